@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// Ghost exchange plan.
+#include "halo_exchange.hpp"
+
+#include <cstring>
+
+#include "field_packing.hpp"
+
+namespace emergent::decomp {
+
+namespace {
+constexpr int kCountTag = 7101;
+constexpr int kDataTag = 7102;
+}  // namespace
+
+void HaloExchange::exchange(const Swap& swap, const void* send, std::size_t send_bytes,
+                            void* recv, std::size_t recv_bytes, int tag) const {
+    if (swap.to_self) {
+        if (send_bytes) std::memcpy(recv, send, send_bytes);
+        return;
+    }
+    MPI_Sendrecv(send, static_cast<int>(send_bytes), MPI_BYTE, swap.send_rank, tag, recv,
+                 static_cast<int>(recv_bytes), MPI_BYTE, swap.recv_rank, tag, comm_,
+                 MPI_STATUS_IGNORE);
+}
+
+void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double width,
+                         unsigned fields) {
+    fields |= kPosition;
+    comm_ = grid.comm();
+    store.resize_ghosts(0);
+    swaps_.clear();
+    const std::size_t stride = packed_bytes(store, fields);
+    const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    for (int d = 0; d < 3; ++d) {
+        // Both faces of an axis export from the particles present before the axis began,
+        // so a ghost imported through -d is not sent straight back through +d.
+        const std::size_t n_candidates = store.size();
+        for (int side = 0; side < 2; ++side) {
+            Swap swap;
+            swap.send_rank = grid.neighbour(d, side);
+            swap.recv_rank = grid.neighbour(d, 1 - side);
+            swap.to_self = swap.send_rank == grid.rank() && swap.recv_rank == grid.rank();
+            if (grid.wraps(d, side)) swap.shift[d] = side == 0 ? len[d] : -len[d];
+            if (swap.send_rank != MPI_PROC_NULL) {
+                for (std::size_t i = 0; i < n_candidates; ++i) {
+                    const double x = store.position[i][d];
+                    if (side == 0 ? x < lo[d] + width : x >= hi[d] - width)
+                        swap.export_index.push_back(static_cast<int>(i));
+                }
+            }
+            unsigned long n_send = swap.export_index.size(), n_recv = 0;
+            if (swap.to_self)
+                n_recv = n_send;
+            else
+                MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, swap.send_rank, kCountTag, &n_recv, 1,
+                             MPI_UNSIGNED_LONG, swap.recv_rank, kCountTag, comm_,
+                             MPI_STATUS_IGNORE);
+            send_buffer_.clear();
+            pack_fields_shifted(store, fields, swap, stride);
+            recv_buffer_.resize(n_recv * stride);
+            exchange(swap, send_buffer_.data(), send_buffer_.size(), recv_buffer_.data(),
+                     recv_buffer_.size(), kDataTag);
+            swap.import_first = store.size();
+            swap.import_count = n_recv;
+            store.resize_ghosts(store.n_ghost() + n_recv);
+            unpack_fields(store, fields, recv_buffer_.data(), n_recv, swap.import_first);
+            swaps_.push_back(std::move(swap));
+        }
+    }
+    n_ghost_ = store.n_ghost();
+}
+
+void HaloExchange::pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
+                                       std::size_t stride) {
+    const std::size_t n = swap.export_index.size();
+    pack_fields(store, fields, swap.export_index.data(), n, send_buffer_);
+    // Position is the first packed field; the copy lands at the image across the boundary.
+    for (std::size_t k = 0; k < n; ++k) {
+        Vec3 x;
+        std::memcpy(&x, send_buffer_.data() + k * stride, sizeof(Vec3));
+        x += swap.shift;
+        std::memcpy(send_buffer_.data() + k * stride, &x, sizeof(Vec3));
+    }
+}
+
+void HaloExchange::gather_positions(ParticleStore& store) {
+    for (const Swap& swap : swaps_) {
+        const std::size_t n = swap.export_index.size();
+        send_positions_.resize(n);
+        const Vec3* x = store.position.data();
+        for (std::size_t k = 0; k < n; ++k) send_positions_[k] = x[swap.export_index[k]] + swap.shift;
+        exchange(swap, send_positions_.data(), n * sizeof(Vec3),
+                 store.position.data() + swap.import_first, swap.import_count * sizeof(Vec3),
+                 kDataTag);
+    }
+}
+
+}  // namespace emergent::decomp

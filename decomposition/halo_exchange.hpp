@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// Ghost particles: which owned particles each neighbour needs, and refreshing them each step.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "emergent/particle_store.hpp"
+#include "rank_grid.hpp"
+
+namespace emergent::decomp {
+
+/// Plan of the ghost (halo) exchange, built from positions and reused until the next rebuild.
+///
+/// Nomenclature: a rank *exports* copies of its particles that lie within `width` of a face
+/// to the rank across that face, which *imports* them as ghosts. Faces are handled in the
+/// order -x, +x, -y, +y, -z, +z, and each axis also re-exports the ghosts imported along the
+/// earlier axes, so edge and corner ghosts arrive without diagonal messages. Crossing a
+/// periodic boundary shifts the copy by one box length; with one rank along an axis the
+/// rank exports to itself, which makes the periodic images. Nothing here knows what the
+/// fields mean, except that positions are shifted across periodic boundaries.
+class HaloExchange {
+public:
+    /// Drops old ghosts, then imports ghosts for all particles within `width` of the local
+    /// faces, carrying the fields in `fields` (position is always carried).
+    void build(ParticleStore& store, const RankGrid& grid, double width, unsigned fields);
+
+    /// Refreshes ghost positions from their owners along the plan of the last build.
+    void gather_positions(ParticleStore& store);
+
+    /// Number of ghosts imported by the last build.
+    std::size_t n_ghost() const { return n_ghost_; }
+
+private:
+    struct Swap {
+        int send_rank = 0, recv_rank = 0;
+        bool to_self = false;
+        Vec3 shift{0, 0, 0};
+        std::vector<int> export_index;
+        std::size_t import_first = 0, import_count = 0;
+    };
+
+    void pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
+                             std::size_t stride);
+    void exchange(const Swap& swap, const void* send, std::size_t send_bytes, void* recv,
+                  std::size_t recv_bytes, int tag) const;
+
+    MPI_Comm comm_ = MPI_COMM_NULL;
+    std::vector<Swap> swaps_;
+    std::vector<char> send_buffer_, recv_buffer_;
+    std::vector<Vec3> send_positions_;
+    std::size_t n_ghost_ = 0;
+};
+
+}  // namespace emergent::decomp

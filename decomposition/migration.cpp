@@ -1,0 +1,84 @@
+// SPDX-License-Identifier: MIT
+// Migration of owned particles between domains.
+#include "migration.hpp"
+
+#include <sstream>
+
+#include "emergent/error.hpp"
+#include "field_packing.hpp"
+
+namespace emergent::decomp {
+
+namespace {
+constexpr int kCountTag = 7201;
+constexpr int kDataTag = 7202;
+
+[[noreturn]] void lost(const ParticleStore& store, std::size_t i, int d, const char* why) {
+    std::ostringstream msg;
+    msg << "particle id " << store.id[i] << " at (" << store.position[i].x << ", "
+        << store.position[i].y << ", " << store.position[i].z << ") " << why << " along "
+        << "xyz"[d];
+    throw RuntimeFault(msg.str(), EMERGENT_HERE);
+}
+}  // namespace
+
+void Migration::apply(ParticleStore& store, const RankGrid& grid) {
+    store.resize_ghosts(0);
+    const std::size_t stride = packed_bytes(store, kAllFields);
+    const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    for (int d = 0; d < 3; ++d) {
+        leaving_[0].clear();
+        leaving_[1].clear();
+        keep_.clear();
+        for (std::size_t i = 0; i < store.n_owned(); ++i) {
+            Vec3& x = store.position[i];
+            const int side = x[d] < lo[d] ? 0 : (x[d] >= hi[d] ? 1 : -1);
+            if (side < 0) {
+                keep_.push_back(static_cast<std::uint32_t>(i));
+                continue;
+            }
+            if (grid.neighbour(d, side) == MPI_PROC_NULL) lost(store, i, d, "left the region");
+            if (grid.wraps(d, side)) {
+                x[d] += side == 0 ? len[d] : -len[d];
+                store.image[i][d] += side == 0 ? -1 : 1;
+            }
+            leaving_[side].push_back(static_cast<int>(i));
+        }
+        const bool alone = grid.dims()[d] == 1;
+        if (alone) {
+            // Our own periodic image: the wrap above was the whole move.
+            for (int side = 0; side < 2; ++side)
+                for (int i : leaving_[side]) {
+                    if (store.position[i][d] < lo[d] || store.position[i][d] >= hi[d])
+                        lost(store, i, d, "moved more than a box length between list builds");
+                }
+            continue;
+        }
+        for (int side = 0; side < 2; ++side) {
+            send_buffer_[side].clear();
+            pack_fields(store, kAllFields, leaving_[side].data(), leaving_[side].size(),
+                        send_buffer_[side]);
+        }
+        store.permute_owned(keep_);
+        store.resize_owned(keep_.size());
+        for (int side = 0; side < 2; ++side) {
+            unsigned long n_send = leaving_[side].size(), n_recv = 0;
+            const int to = grid.neighbour(d, side), from = grid.neighbour(d, 1 - side);
+            MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, to, kCountTag, &n_recv, 1,
+                         MPI_UNSIGNED_LONG, from, kCountTag, grid.comm(), MPI_STATUS_IGNORE);
+            recv_buffer_.resize(n_recv * stride);
+            MPI_Sendrecv(send_buffer_[side].data(), static_cast<int>(send_buffer_[side].size()),
+                         MPI_BYTE, to, kDataTag, recv_buffer_.data(),
+                         static_cast<int>(recv_buffer_.size()), MPI_BYTE, from, kDataTag,
+                         grid.comm(), MPI_STATUS_IGNORE);
+            const std::size_t first = store.n_owned();
+            store.resize_owned(first + n_recv);
+            unpack_fields(store, kAllFields, recv_buffer_.data(), n_recv, first);
+            for (std::size_t i = first; i < store.n_owned(); ++i)
+                if (store.position[i][d] < lo[d] || store.position[i][d] >= hi[d])
+                    lost(store, i, d, "moved more than one domain between list builds");
+        }
+    }
+}
+
+}  // namespace emergent::decomp

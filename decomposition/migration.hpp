@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// Hands owned particles that left the local domain to the ranks that now own them.
+#pragma once
+
+#include <vector>
+
+#include "emergent/particle_store.hpp"
+#include "rank_grid.hpp"
+
+namespace emergent::decomp {
+
+/// Moves owned particles to their new owners, axis by axis (x, then y, then z), so a particle
+/// that crossed an edge or corner arrives in two or three hops. A particle crossing a periodic
+/// boundary is wrapped back into the box and its image count updated. Ghosts are dropped.
+///
+/// Throws RuntimeFault when a particle went further than the next domain (the state is broken:
+/// the neighbour list missed pairs) or left the box through a non-periodic face.
+class Migration {
+public:
+    void apply(ParticleStore& store, const RankGrid& grid);
+
+private:
+    std::vector<int> leaving_[2];
+    std::vector<char> send_buffer_[2], recv_buffer_;
+    std::vector<std::uint32_t> keep_;
+};
+
+}  // namespace emergent::decomp

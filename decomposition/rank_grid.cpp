@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: MIT
+// Cartesian rank grid.
+#include "rank_grid.hpp"
+
+#include <limits>
+#include <sstream>
+
+#include "emergent/error.hpp"
+
+namespace emergent::decomp {
+
+Int3 RankGrid::choose_dims(int n, const Vec3& length, const bool split_axis[3]) {
+    Int3 best{0, 0, 0};
+    double best_area = std::numeric_limits<double>::max();
+    for (int px = 1; px <= n; ++px) {
+        if (n % px || (px > 1 && !split_axis[0])) continue;
+        for (int py = 1; py <= n / px; ++py) {
+            if ((n / px) % py || (py > 1 && !split_axis[1])) continue;
+            const int pz = n / px / py;
+            if (pz > 1 && !split_axis[2]) continue;
+            const double ax = length.x / px, ay = length.y / py, az = length.z / pz;
+            // Surface of one sub-box: what its ghost shell scales with.
+            const double area = ax * ay + ay * az + az * ax;
+            if (area < best_area * (1 - 1e-12)) {
+                best_area = area;
+                best = {px, py, pz};
+            }
+        }
+    }
+    if (best.x == 0) {
+        std::ostringstream msg;
+        msg << "grid: " << n << " ranks cannot be arranged along the axes this scene allows";
+        throw InputError(msg.str());
+    }
+    return best;
+}
+
+RankGrid::RankGrid(MPI_Comm comm, const Box& global, Int3 dims, const bool split_axis[3])
+    : global_(global) {
+    const bool all[3] = {true, true, true};
+    if (!split_axis) split_axis = all;
+    int n = 1;
+    MPI_Comm_size(comm, &n);
+    if (dims.x <= 0 || dims.y <= 0 || dims.z <= 0) {
+        dims_ = choose_dims(n, global.length(), split_axis);
+    } else {
+        if (dims.x * dims.y * dims.z != n) {
+            std::ostringstream msg;
+            msg << "grid=" << dims.x << "x" << dims.y << "x" << dims.z << " has "
+                << dims.x * dims.y * dims.z << " domains but the run has " << n << " ranks";
+            throw InputError(msg.str());
+        }
+        for (int d = 0; d < 3; ++d)
+            if (dims[d] > 1 && !split_axis[d])
+                throw InputError("grid: this scene cannot be split along axis " +
+                                 std::string(1, "xyz"[d]));
+        dims_ = dims;
+    }
+    int mpi_dims[3] = {dims_.x, dims_.y, dims_.z};
+    int periods[3] = {global.periodic[0], global.periodic[1], global.periodic[2]};
+    // No reordering: rank numbers stay those of `comm`, so output order is predictable.
+    MPI_Cart_create(comm, 3, mpi_dims, periods, 0, &cart_);
+    MPI_Comm_rank(cart_, &rank_);
+    MPI_Comm_size(cart_, &size_);
+    int c[3];
+    MPI_Cart_coords(cart_, rank_, 3, c);
+    coords_ = {c[0], c[1], c[2]};
+    const Vec3 len = global.length();
+    for (int d = 0; d < 3; ++d) {
+        lo_[d] = global.lo[d] + len[d] * coords_[d] / dims_[d];
+        hi_[d] = coords_[d] + 1 == dims_[d] ? global.hi[d]
+                                            : global.lo[d] + len[d] * (coords_[d] + 1) / dims_[d];
+        MPI_Cart_shift(cart_, d, 1, &neighbour_[d][0], &neighbour_[d][1]);
+    }
+}
+
+RankGrid::~RankGrid() {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized && cart_ != MPI_COMM_NULL) MPI_Comm_free(&cart_);
+}
+
+bool RankGrid::wraps(int d, int side) const {
+    if (!global_.periodic[d]) return false;
+    return side == 0 ? coords_[d] == 0 : coords_[d] == dims_[d] - 1;
+}
+
+void RankGrid::require_width(double ghost_width) const {
+    const Vec3 len = global_.length();
+    for (int d = 0; d < 3; ++d) {
+        const double width = len[d] / dims_[d];
+        if (width < ghost_width) {
+            std::ostringstream msg;
+            msg << "domain too thin: axis " << "xyz"[d] << " is split into " << dims_[d]
+                << " domains of width " << width << ", less than the ghost shell "
+                << ghost_width << " (cutoff + skin); use fewer ranks or a larger system";
+            throw InputError(msg.str());
+        }
+    }
+}
+
+}  // namespace emergent::decomp

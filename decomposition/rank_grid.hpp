@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// Cartesian grid of ranks over an orthorhombic box: who owns which sub-box, who is next door.
+#pragma once
+
+#include <mpi.h>
+
+#include "emergent/box.hpp"
+
+namespace emergent::decomp {
+
+/// A 3D Cartesian partition of the global box into equal sub-boxes, one per rank.
+///
+/// The grid minimises the surface between sub-boxes (the ghost volume) unless a shape is
+/// given. Axes may be excluded from splitting (a scene whose images couple two axes, for
+/// instance). Nothing here knows about forces: the ghost width is a number handed in.
+class RankGrid {
+public:
+    /// dims: requested ranks per axis, 0 = choose; split_axis[d] = false keeps axis d whole.
+    RankGrid(MPI_Comm comm, const Box& global, Int3 dims = {0, 0, 0},
+             const bool split_axis[3] = nullptr);
+    ~RankGrid();
+    RankGrid(const RankGrid&) = delete;
+    RankGrid& operator=(const RankGrid&) = delete;
+
+    MPI_Comm comm() const { return cart_; }
+    int rank() const { return rank_; }
+    int size() const { return size_; }
+    const Box& global() const { return global_; }
+    Int3 dims() const { return dims_; }
+    Int3 coords() const { return coords_; }
+    Vec3 lo() const { return lo_; }
+    Vec3 hi() const { return hi_; }
+
+    /// Rank across face (d, side); side 0 = low, 1 = high. MPI_PROC_NULL at a closed wall.
+    int neighbour(int d, int side) const { return neighbour_[d][side]; }
+
+    /// True if crossing face (d, side) wraps around the periodic global box.
+    bool wraps(int d, int side) const;
+
+    /// Throws InputError (collectively) when a sub-box is thinner than the ghost width.
+    void require_width(double ghost_width) const;
+
+    /// Ranks per axis minimising the inter-domain surface for box lengths `length`.
+    static Int3 choose_dims(int n_ranks, const Vec3& length, const bool split_axis[3]);
+
+private:
+    MPI_Comm cart_ = MPI_COMM_NULL;
+    Box global_;
+    int rank_ = 0, size_ = 1;
+    Int3 dims_{1, 1, 1}, coords_{0, 0, 0};
+    Vec3 lo_{}, hi_{};
+    int neighbour_[3][2] = {};
+};
+
+}  // namespace emergent::decomp

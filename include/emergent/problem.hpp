@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+// The problem (scene) plugin API and the static registry scenes add themselves to.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "emergent/config.hpp"
+
+namespace emergent {
+
+class Simulation;
+
+/// A scene: composes engine parts into one physical system. It holds only what is special to
+/// it; integration, neighbour search, decomposition and output belong to the engine.
+class Problem {
+public:
+    virtual ~Problem() = default;
+    /// Sets the box, species, force terms, thermostat and initial particles of `sim`.
+    virtual void build(Simulation& sim) = 0;
+};
+
+/// Named sets of parameter values, e.g. presets["tiny"]["n_cells"] = "4".
+using Presets = std::map<std::string, std::map<std::string, std::string>>;
+
+/// What a scene tells the registry about itself.
+struct ProblemInfo {
+    std::string name;
+    std::string description;
+    Schema schema;  ///< engine run parameters plus the scene's own
+    Presets presets;
+    std::function<std::unique_ptr<Problem>(const Config&)> factory;
+};
+
+/// All scenes known to this executable.
+class ProblemRegistry {
+public:
+    static ProblemRegistry& instance();
+    bool add(ProblemInfo info);
+    const ProblemInfo* find(const std::string& name) const;
+    std::vector<const ProblemInfo*> all() const;
+
+private:
+    std::map<std::string, ProblemInfo> problems_;
+};
+
+/// Parameters every run has (time step, skin, step counts, seed, sampling, rank grid).
+Schema run_schema();
+
+/// Resolves a run's parameters, later sources overriding earlier ones: schema defaults, then
+/// the preset, then each INI file, then each `key=value`. Unknown keys and invalid values
+/// throw InputError naming the scene and the key.
+Config resolve_config(const ProblemInfo& info, const std::string& preset,
+                      const std::vector<std::string>& ini_files,
+                      const std::vector<std::string>& assignments);
+
+}  // namespace emergent
+
+#define EMERGENT_CONCAT_DETAIL(a, b) a##b
+#define EMERGENT_CONCAT(a, b) EMERGENT_CONCAT_DETAIL(a, b)
+
+/// Registers a scene: `info_function` returns its ProblemInfo. Used once, at the end of the
+/// scene's .cpp file.
+#define EMERGENT_REGISTER_PROBLEM(info_function)                                    \
+    static const bool EMERGENT_CONCAT(emergent_registered_, __LINE__) =             \
+        ::emergent::ProblemRegistry::instance().add(info_function())

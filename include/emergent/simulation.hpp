@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// One decomposed particle system and its time step: what scenes compose and the engine runs.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "emergent/box.hpp"
+#include "emergent/force_term.hpp"
+#include "emergent/particle_store.hpp"
+#include "emergent/thermostat.hpp"
+
+namespace emergent {
+
+/// Engine settings a scene does not choose (they come from the run parameters).
+struct RunSettings {
+    double dt = 0.005;
+    double skin = 0.3;
+    Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
+};
+
+/// Global thermodynamic state at one step; energies are per particle.
+struct ThermoSample {
+    long long step = 0;
+    double time = 0;
+    long long n = 0;
+    double kinetic = 0, potential = 0, total = 0;
+    double temperature = 0, pressure = 0;
+    Vec3 momentum{0, 0, 0};
+};
+
+/// Wall-clock seconds spent in each part of the step (this rank).
+struct PhaseTimes {
+    double neighbour = 0;  ///< migration, sorting, ghost build, cell and Verlet lists
+    double force = 0;
+    double integrate = 0;  ///< both half steps and the thermostat
+    double communicate = 0;  ///< ghost position refresh and the rebuild check
+};
+
+/// A particle system decomposed over the ranks of a communicator.
+///
+/// A scene sets the box, species masses, force terms, thermostat and particles; then
+/// initialise() and step() run it. Particles are added with global coordinates by every rank;
+/// each rank keeps those inside its own domain.
+class Simulation {
+public:
+    Simulation(MPI_Comm comm, const RunSettings& settings);
+    ~Simulation();
+    Simulation(const Simulation&) = delete;
+    Simulation& operator=(const Simulation&) = delete;
+
+    // --- composition (before initialise) ---
+    /// Sets the region and partitions it; split_axis[d] = false keeps axis d on one rank.
+    void set_box(const Box& box, const bool split_axis[3] = nullptr);
+    void set_species_masses(const std::vector<double>& masses);
+    void add_force(std::unique_ptr<ForceTerm> term);
+    void set_thermostat(std::unique_ptr<Thermostat> thermostat);
+    /// Keeps the particle if x lies in this rank's domain.
+    void add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id);
+    /// Sets velocities from a Maxwell distribution at temperature T (same for any rank
+    /// count), with zero total momentum and the kinetic energy of exactly T.
+    void assign_thermal_velocities(double temperature, std::uint64_t seed);
+
+    // --- running ---
+    /// Decomposes, builds ghosts and lists, and computes the first forces.
+    void initialise();
+    /// One velocity-Verlet step; `sample` makes the force terms also sum energy and virial,
+    /// which measure() then reports.
+    void step(bool sample);
+    /// Global thermodynamic state; potential energy and pressure refer to the last step taken
+    /// with sample = true (or to initialise()).
+    ThermoSample measure() const;
+
+    // --- state ---
+    ParticleStore& particles();
+    const ParticleStore& particles() const;
+    const Box& box() const;
+    MPI_Comm comm() const;
+    int rank() const;
+    int n_ranks() const;
+    Int3 rank_grid_dims() const;
+    long long n_global() const;
+    long long step_index() const;
+    double time() const;
+    double dt() const;
+    long long rebuilds() const;
+    double degrees_of_freedom() const;
+    const PhaseTimes& phase_times() const;
+    void reset_phase_times();
+
+private:
+    struct Engine;
+    std::unique_ptr<Engine> engine_;
+};
+
+}  // namespace emergent

@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+// The `emergent` command line: list, help <scene>, run <scene>.
+#include <mpi.h>
+
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+
+#include "app/run.hpp"
+#include "emergent/error.hpp"
+#include "emergent/problem.hpp"
+
+namespace po = boost::program_options;
+using namespace emergent;
+
+namespace {
+
+const char* kUsage =
+    "usage: emergent list\n"
+    "       emergent help <scene>\n"
+    "       emergent run <scene> [--preset P] [--config file.ini]... [--set key=value]...\n"
+    "                            [-o DIR] [--summary-json FILE]\n";
+
+const ProblemInfo& find_scene(const std::string& name) {
+    const ProblemInfo* info = ProblemRegistry::instance().find(name);
+    if (!info) throw InputError("unknown scene '" + name + "' (see: emergent list)");
+    return *info;
+}
+
+void list_scenes(std::ostream& out) {
+    for (const ProblemInfo* p : ProblemRegistry::instance().all())
+        out << p->name << "  " << p->description << "\n";
+}
+
+void help_scene(const ProblemInfo& info, std::ostream& out) {
+    out << info.name << ": " << info.description << "\n\nparameters (name, default, unit, range):\n";
+    for (const auto& p : info.schema.params()) {
+        out << "  " << p.name << " = " << p.default_value;
+        if (!p.unit.empty()) out << "  [" << p.unit << "]";
+        const std::string range = p.range_text();
+        if (!range.empty()) out << "  (" << range << ")";
+        out << "\n      " << p.help << "\n";
+    }
+    out << "\npresets:\n";
+    for (const auto& [name, values] : info.presets) {
+        out << "  " << name << ":";
+        for (const auto& [k, v] : values) out << " " << k << "=" << v;
+        out << "\n";
+    }
+}
+
+int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
+    po::options_description options("run options");
+    options.add_options()("preset", po::value<std::string>()->default_value(""), "preset")(
+        "config", po::value<std::vector<std::string>>()->composing(), "INI file")(
+        "set", po::value<std::vector<std::string>>()->composing(), "key=value")(
+        "output,o", po::value<std::string>()->default_value(""), "output directory")(
+        "summary-json", po::value<std::string>()->default_value(""), "summary file")(
+        "scene", po::value<std::string>(), "scene");
+    po::positional_options_description positional;
+    positional.add("scene", 1);
+    po::variables_map vm;
+    po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
+    po::notify(vm);
+    if (!vm.count("scene")) throw InputError("run: no scene given (see: emergent list)");
+    app::RunRequest req;
+    req.problem = &find_scene(vm["scene"].as<std::string>());
+    auto list = [&](const char* key) {
+        return vm.count(key) ? vm[key].as<std::vector<std::string>>() : std::vector<std::string>{};
+    };
+    req.config = resolve_config(*req.problem, vm["preset"].as<std::string>(), list("config"),
+                                list("set"));
+    req.output_dir = vm["output"].as<std::string>();
+    req.summary_json = vm["summary-json"].as<std::string>();
+    app::run_problem(req, comm);
+    return 0;
+}
+
+int dispatch(int argc, char** argv, MPI_Comm comm, int rank) {
+    if (argc < 2) throw InputError(std::string("no command given\n") + kUsage);
+    const std::string command = argv[1];
+    std::vector<std::string> args(argv + 2, argv + argc);
+    if (command == "list") {
+        if (rank == 0) list_scenes(std::cout);
+        return 0;
+    }
+    if (command == "help" || command == "--help" || command == "-h") {
+        if (args.empty()) {
+            if (rank == 0) std::cout << kUsage;
+        } else if (rank == 0) {
+            help_scene(find_scene(args[0]), std::cout);
+        }
+        return 0;
+    }
+    if (command == "run") return run_command(args, comm);
+    throw InputError("unknown command '" + command + "'");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    MPI_Init(&argc, &argv);
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    int code = 0;
+    try {
+        code = dispatch(argc, argv, MPI_COMM_WORLD, rank);
+    } catch (const RuntimeFault& e) {
+        // Seen by this rank only: the others may be waiting in a collective, so abort them.
+        std::fprintf(stderr, "emergent: error on rank %d: %s [%s]\n", rank, e.what(), e.where());
+        std::fflush(stderr);
+        MPI_Abort(MPI_COMM_WORLD, 3);
+    } catch (const InstabilityError& e) {
+        if (rank == 0) std::fprintf(stderr, "emergent: run stopped: %s\n", e.what());
+        code = 3;
+    } catch (const po::error& e) {
+        if (rank == 0) std::fprintf(stderr, "emergent: error: %s\n", e.what());
+        code = 2;
+    } catch (const InputError& e) {
+        if (rank == 0) std::fprintf(stderr, "emergent: error: %s\n", e.what());
+        code = 2;
+    }
+    MPI_Finalize();
+    return code;
+}

@@ -1,0 +1,28 @@
+// SPDX-License-Identifier: MIT
+// Runs one scene: build, equilibrate, measure, report.
+#pragma once
+
+#include <mpi.h>
+
+#include <string>
+
+#include "emergent/config.hpp"
+#include "emergent/problem.hpp"
+#include "emergent/vec3.hpp"
+
+namespace emergent::app {
+
+struct RunRequest {
+    const ProblemInfo* problem = nullptr;
+    Config config;
+    std::string output_dir;    ///< empty: no files besides the summary
+    std::string summary_json;  ///< empty: none
+};
+
+/// Runs the scene on `comm`; progress goes to stdout on rank 0. Returns the summary as JSON.
+std::string run_problem(const RunRequest& request, MPI_Comm comm);
+
+/// Parses "NXxNYxNZ" or "auto" (0x0x0).
+Int3 parse_grid(const std::string& scene, const std::string& text);
+
+}  // namespace emergent::app

@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: MIT
+// Scene registry, engine run parameters and configuration resolution.
+#include <stdexcept>
+
+#include "emergent/error.hpp"
+#include "emergent/problem.hpp"
+
+namespace emergent {
+
+ProblemRegistry& ProblemRegistry::instance() {
+    static ProblemRegistry registry;
+    return registry;
+}
+
+bool ProblemRegistry::add(ProblemInfo info) {
+    const std::string name = info.name;
+    if (!problems_.emplace(name, std::move(info)).second)
+        throw std::logic_error("problem registered twice: " + name);
+    return true;
+}
+
+const ProblemInfo* ProblemRegistry::find(const std::string& name) const {
+    const auto it = problems_.find(name);
+    return it == problems_.end() ? nullptr : &it->second;
+}
+
+std::vector<const ProblemInfo*> ProblemRegistry::all() const {
+    std::vector<const ProblemInfo*> list;
+    for (const auto& [name, info] : problems_) list.push_back(&info);
+    return list;
+}
+
+Schema run_schema() {
+    Schema s;
+    s.real("dt", 0.005, 0, 1, "tau", "integration time step", true)
+        .real("skin", 0.3, 0, 5, "sigma", "neighbour-list skin beyond the largest cutoff", true)
+        .integer("equilibration_steps", 1000, 0, 1e12, "steps",
+                 "steps run first, excluded from averages and timing")
+        .integer("steps", 10000, 0, 1e12, "steps", "measured steps (averaged and timed)")
+        .integer("sample_every", 100, 1, 1e9, "steps",
+                 "steps between samples of energy, temperature and pressure")
+        .integer("seed", 12345, 0, 9.2e18, "1", "random seed (initial state, thermostat)")
+        .text("grid", "auto", "rank grid as NXxNYxNZ (e.g. 2x1x1); auto minimises the ghost volume")
+        .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)");
+    return s;
+}
+
+Config resolve_config(const ProblemInfo& info, const std::string& preset,
+                      const std::vector<std::string>& ini_files,
+                      const std::vector<std::string>& assignments) {
+    std::map<std::string, std::string> values;
+    for (const auto& p : info.schema.params()) values[p.name] = p.default_value;
+    auto apply = [&](const std::string& key, const std::string& value, const std::string& from) {
+        const ParamSpec* spec = info.schema.find(key);
+        if (!spec)
+            throw InputError(info.name + ": unknown parameter '" + key + "'" + from +
+                             " (see: emergent help " + info.name + ")");
+        spec->validate(info.name, value);
+        values[key] = value;
+    };
+    if (!preset.empty()) {
+        const auto it = info.presets.find(preset);
+        if (it == info.presets.end()) {
+            std::string known;
+            for (const auto& [name, _] : info.presets) known += (known.empty() ? "" : ", ") + name;
+            throw InputError(info.name + ": unknown preset '" + preset + "' (presets: " + known +
+                             ")");
+        }
+        for (const auto& [k, v] : it->second) apply(k, v, " in preset " + preset);
+    }
+    for (const auto& file : ini_files)
+        for (const auto& [k, v] : read_ini(file)) apply(k, v, " in " + file);
+    for (const auto& a : assignments) {
+        const auto [k, v] = split_assignment(a);
+        apply(k, v, "");
+    }
+    return Config(info.name, std::move(values));
+}
+
+}  // namespace emergent

@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: MIT
+// The time step and the parts it is made of.
+#include "emergent/simulation.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "decomposition/halo_exchange.hpp"
+#include "decomposition/migration.hpp"
+#include "decomposition/rank_grid.hpp"
+#include "decomposition/reductions.hpp"
+#include "emergent/error.hpp"
+#include "emergent/execution.hpp"
+#include "emergent/random.hpp"
+#include "integrate/velocity_verlet.hpp"
+#include "neighbour/cell_list.hpp"
+#include "neighbour/neighbour_list.hpp"
+
+namespace emergent {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+/// Adds the seconds since construction to `slot` when it goes out of scope.
+class PhaseTimer {
+public:
+    explicit PhaseTimer(double& slot) : slot_(slot), start_(Clock::now()) {}
+    ~PhaseTimer() { slot_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+private:
+    double& slot_;
+    Clock::time_point start_;
+};
+}  // namespace
+
+struct Simulation::Engine {
+    MPI_Comm comm;
+    RunSettings settings;
+    Box box;
+    std::unique_ptr<decomp::RankGrid> grid;
+    ParticleStore store;
+    std::vector<Real> mass{1.0}, inverse_mass{1.0};
+    std::vector<std::unique_ptr<ForceTerm>> forces;
+    std::unique_ptr<Thermostat> thermostat;
+    decomp::Migration migration;
+    decomp::HaloExchange halo;
+    CellList cells;
+    NeighbourList list;
+    ForceSums sums;
+    unsigned ghost_fields = kPosition;
+    long long n_global = 0, step = 0, rebuilds = 0;
+    double time = 0;
+    PhaseTimes times;
+    std::vector<std::uint32_t> order;
+
+    double ghost_width() const { return list.list_cutoff(); }
+
+    /// Re-partitions particles and rebuilds ghosts, cells and the Verlet list.
+    void rebuild() {
+        PhaseTimer timer(times.neighbour);
+        migration.apply(store, *grid);
+        // Cell order gives the force loop neighbours that sit close in memory.
+        cells.sort_order(store.position.data(), store.n_owned(), order);
+        store.permute_owned(order);
+        halo.build(store, *grid, ghost_width(), ghost_fields);
+        cells.bin(store.position.data(), store.size());
+        list.build(store, cells);
+        ++rebuilds;
+        const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
+        if (n != n_global) {
+            std::ostringstream msg;
+            msg << "particle count changed from " << n_global << " to " << n << " at step " << step;
+            throw InstabilityError(msg.str());
+        }
+    }
+
+    void compute_forces(bool sample) {
+        PhaseTimer timer(times.force);
+        std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
+        sums = ForceSums{};
+        for (const auto& term : forces) term->add_forces(store, list, sample, sums);
+    }
+
+    void kick_drift() {
+        PhaseTimer timer(times.integrate);
+        exec::for_each(exec::Host{}, store.n_owned(),
+                       integrate::KickDrift{store.position.data(), store.velocity.data(),
+                                            store.force.data(), store.species.data(),
+                                            inverse_mass.data(), settings.dt});
+    }
+
+    void kick() {
+        PhaseTimer timer(times.integrate);
+        exec::for_each(exec::Host{}, store.n_owned(),
+                       integrate::Kick{store.velocity.data(), store.force.data(),
+                                       store.species.data(), inverse_mass.data(), settings.dt});
+    }
+
+    double local_kinetic() const {
+        double k = 0;
+        for (std::size_t i = 0; i < store.n_owned(); ++i)
+            k += 0.5 * mass[store.species[i]] * dot(store.velocity[i], store.velocity[i]);
+        return k;
+    }
+
+    double dof() const {
+        const bool periodic = box.periodic[0] && box.periodic[1] && box.periodic[2];
+        // In a fully periodic box total momentum is conserved: 3 fewer degrees of freedom.
+        return 3.0 * n_global - (periodic ? 3.0 : 0.0);
+    }
+
+    void apply_thermostat() {
+        if (!thermostat) return;
+        PhaseTimer timer(times.integrate);
+        const double kinetic = decomp::sum(comm, local_kinetic());
+        const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
+        exec::for_each(exec::Host{}, store.n_owned(),
+                       integrate::ScaleVelocity{store.velocity.data(), factor});
+    }
+
+    void require_grid(const char* what) const {
+        if (!grid) throw std::logic_error(std::string(what) + ": set_box first");
+    }
+};
+
+Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
+    : engine_(std::make_unique<Engine>()) {
+    engine_->comm = comm;
+    engine_->settings = settings;
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::set_box(const Box& box, const bool split_axis[3]) {
+    for (int d = 0; d < 3; ++d)
+        if (!(box.hi[d] > box.lo[d])) {
+            std::ostringstream msg;
+            msg << "box: axis " << "xyz"[d] << " has length " << box.hi[d] - box.lo[d]
+                << ", must be > 0";
+            throw InputError(msg.str());
+        }
+    engine_->box = box;
+    engine_->grid = std::make_unique<decomp::RankGrid>(engine_->comm, box, engine_->settings.grid,
+                                                       split_axis);
+}
+
+void Simulation::set_species_masses(const std::vector<double>& masses) {
+    engine_->mass.assign(masses.begin(), masses.end());
+    engine_->inverse_mass.clear();
+    for (double m : masses) {
+        if (!(m > 0)) throw InputError("species mass " + std::to_string(m) + " must be > 0");
+        engine_->inverse_mass.push_back(1.0 / m);
+    }
+}
+
+void Simulation::add_force(std::unique_ptr<ForceTerm> term) {
+    engine_->ghost_fields |= term->ghost_fields();
+    engine_->forces.push_back(std::move(term));
+}
+
+void Simulation::set_thermostat(std::unique_ptr<Thermostat> thermostat) {
+    engine_->thermostat = std::move(thermostat);
+}
+
+void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id) {
+    Engine& e = *engine_;
+    e.require_grid("add_particle");
+    const Vec3 lo = e.grid->lo(), hi = e.grid->hi();
+    for (int d = 0; d < 3; ++d)
+        if (x[d] < lo[d] || x[d] >= hi[d]) return;
+    if (species < 0 || species >= static_cast<int>(e.mass.size()))
+        throw InputError("particle species " + std::to_string(species) + " has no mass set");
+    e.store.add_owned(x, v, species, id);
+}
+
+void Simulation::assign_thermal_velocities(double temperature, std::uint64_t seed) {
+    Engine& e = *engine_;
+    ParticleStore& s = e.store;
+    e.n_global = decomp::sum(e.comm, static_cast<long long>(s.n_owned()));
+    double p[4] = {0, 0, 0, 0};  // momentum and total mass
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+        const double m = e.mass[s.species[i]];
+        const auto id = static_cast<std::uint64_t>(s.id[i]);
+        for (int d = 0; d < 3; ++d)
+            s.velocity[i][d] = std::sqrt(temperature / m) * gaussian(seed, id, d);
+        for (int d = 0; d < 3; ++d) p[d] += m * s.velocity[i][d];
+        p[3] += m;
+    }
+    decomp::sum_in_place(e.comm, p, 4);
+    const Vec3 drift{p[0] / p[3], p[1] / p[3], p[2] / p[3]};
+    for (std::size_t i = 0; i < s.n_owned(); ++i) s.velocity[i] -= drift;
+    const double kinetic = decomp::sum(e.comm, e.local_kinetic());
+    const double factor = kinetic > 0 ? std::sqrt(0.5 * e.dof() * temperature / kinetic) : 0.0;
+    for (std::size_t i = 0; i < s.n_owned(); ++i) s.velocity[i] *= factor;
+}
+
+void Simulation::initialise() {
+    Engine& e = *engine_;
+    e.require_grid("initialise");
+    double cutoff = 0;
+    for (const auto& term : e.forces) cutoff = std::max(cutoff, term->cutoff());
+    e.list = NeighbourList(cutoff, e.settings.skin);
+    e.grid->require_width(e.ghost_width());
+    e.cells.setup(e.grid->lo(), e.grid->hi(), e.ghost_width(), e.ghost_width());
+    e.n_global = decomp::sum(e.comm, static_cast<long long>(e.store.n_owned()));
+    e.rebuild();
+    e.compute_forces(true);
+}
+
+void Simulation::step(bool sample) {
+    Engine& e = *engine_;
+    e.kick_drift();
+    bool rebuild;
+    {
+        PhaseTimer timer(e.times.communicate);
+        rebuild = e.list.needs_rebuild(e.store, e.comm);
+        if (!rebuild) e.halo.gather_positions(e.store);
+    }
+    if (rebuild) e.rebuild();
+    e.compute_forces(sample);
+    e.kick();
+    e.apply_thermostat();
+    ++e.step;
+    e.time += e.settings.dt;
+}
+
+ThermoSample Simulation::measure() const {
+    const Engine& e = *engine_;
+    const ParticleStore& s = e.store;
+    double v[6] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0};
+    for (std::size_t i = 0; i < s.n_owned(); ++i)
+        for (int d = 0; d < 3; ++d) v[3 + d] += e.mass[s.species[i]] * s.velocity[i][d];
+    decomp::sum_in_place(e.comm, v, 6);
+    ThermoSample t;
+    t.step = e.step;
+    t.time = e.time;
+    t.n = e.n_global;
+    const double n = static_cast<double>(e.n_global);
+    t.kinetic = v[0] / n;
+    t.potential = v[1] / n;
+    t.total = t.kinetic + t.potential;
+    t.temperature = 2 * v[0] / e.dof();
+    t.pressure = (2 * v[0] + v[2]) / (3 * e.box.volume());
+    t.momentum = {v[3], v[4], v[5]};
+    return t;
+}
+
+ParticleStore& Simulation::particles() { return engine_->store; }
+const ParticleStore& Simulation::particles() const { return engine_->store; }
+const Box& Simulation::box() const { return engine_->box; }
+MPI_Comm Simulation::comm() const { return engine_->comm; }
+int Simulation::rank() const { return engine_->grid ? engine_->grid->rank() : 0; }
+int Simulation::n_ranks() const { return engine_->grid ? engine_->grid->size() : 1; }
+Int3 Simulation::rank_grid_dims() const { return engine_->grid->dims(); }
+long long Simulation::n_global() const { return engine_->n_global; }
+long long Simulation::step_index() const { return engine_->step; }
+double Simulation::time() const { return engine_->time; }
+double Simulation::dt() const { return engine_->settings.dt; }
+long long Simulation::rebuilds() const { return engine_->rebuilds; }
+double Simulation::degrees_of_freedom() const { return engine_->dof(); }
+const PhaseTimes& Simulation::phase_times() const { return engine_->times; }
+void Simulation::reset_phase_times() { engine_->times = PhaseTimes{}; }
+
+}  // namespace emergent

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+// CPU loop over a half neighbour list, applying any pair evaluator.
+#pragma once
+
+#include "emergent/force_term.hpp"
+#include "neighbour/neighbour_list.hpp"
+
+namespace emergent::force {
+
+/// Compile-time switches of the pair loop; each combination is its own instantiation, so the
+/// force-only path carries no energy or virial arithmetic.
+template <bool Sample>
+struct PairFeatures {
+    static constexpr bool sample = Sample;
+};
+
+/// Adds pair forces for every listed pair (Newton's third law on both members; forces landing on
+/// ghosts are discarded by the caller's next zeroing). Energy and virial of an owned–ghost pair
+/// count half here: the rank that owns the ghost counts the other half.
+template <class Features, class Evaluator>
+void pair_forces_half_list(ParticleStore& store, const NeighbourList& list, const Evaluator& eval,
+                           ForceSums& sums) {
+    const std::size_t n_owned = list.n_owned();
+    const Vec3* x = store.position.data();
+    Vec3* f = store.force.data();
+    const std::uint32_t* offset = list.offsets();
+    const std::uint32_t* nb = list.neighbours();
+    double potential = 0, virial = 0;
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        const Vec3 xi = x[i];
+        Vec3 fi{0, 0, 0};
+        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+            const std::uint32_t j = nb[k];
+            const Real dx = xi.x - x[j].x, dy = xi.y - x[j].y, dz = xi.z - x[j].z;
+            const Real r2 = dx * dx + dy * dy + dz * dz;
+            if (r2 >= eval.cutoff_sq) continue;
+            const Real fr = eval.force_over_r(r2);
+            fi.x += fr * dx;
+            fi.y += fr * dy;
+            fi.z += fr * dz;
+            f[j].x -= fr * dx;
+            f[j].y -= fr * dy;
+            f[j].z -= fr * dz;
+            if constexpr (Features::sample) {
+                const Real weight = j < n_owned ? 1.0 : 0.5;
+                potential += weight * eval.energy(r2);
+                virial += weight * fr * r2;
+            }
+        }
+        f[i] += fi;
+    }
+    if constexpr (Features::sample) {
+        sums.potential += potential;
+        sums.virial += virial;
+    }
+}
+
+}  // namespace emergent::force

@@ -1,0 +1,58 @@
+// SPDX-License-Identifier: MIT
+// Cell list by counting sort.
+#include "cell_list.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace emergent {
+
+void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double min_cell) {
+    for (int d = 0; d < 3; ++d) {
+        const double len = hi[d] - lo[d];
+        const int inner = std::max(1, static_cast<int>(std::floor(len / min_cell)));
+        const double width = len / inner;
+        const int layers = static_cast<int>(std::ceil(shell / width - 1e-12));
+        n_[d] = inner + 2 * layers;
+        origin_[d] = lo[d] - layers * width;
+        inverse_width_[d] = 1.0 / width;
+    }
+    inner_.assign(n_cells(), 0);
+    // Mark cells that lie inside the domain: their index range excludes the ghost layers.
+    for (int z = 0; z < n_[2]; ++z)
+        for (int y = 0; y < n_[1]; ++y)
+            for (int x = 0; x < n_[0]; ++x) {
+                const Vec3 centre{origin_[0] + (x + 0.5) / inverse_width_[0],
+                                  origin_[1] + (y + 0.5) / inverse_width_[1],
+                                  origin_[2] + (z + 0.5) / inverse_width_[2]};
+                bool in = true;
+                for (int d = 0; d < 3; ++d) in = in && centre[d] > lo[d] && centre[d] < hi[d];
+                inner_[(z * n_[1] + y) * n_[0] + x] = in;
+            }
+}
+
+void CellList::count(const Vec3* x, std::size_t n) {
+    cell_.resize(n);
+    start_.assign(n_cells() + 1, 0);
+    for (std::size_t i = 0; i < n; ++i) {
+        cell_[i] = static_cast<std::uint32_t>(cell_of(x[i]));
+        ++start_[cell_[i] + 1];
+    }
+    for (int c = 0; c < n_cells(); ++c) start_[c + 1] += start_[c];
+}
+
+void CellList::sort_order(const Vec3* x, std::size_t n, std::vector<std::uint32_t>& order) {
+    count(x, n);
+    order.resize(n);
+    std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) order[next[cell_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+void CellList::bin(const Vec3* x, std::size_t n) {
+    count(x, n);
+    members_.resize(n);
+    std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) members_[next[cell_[i]]++] = static_cast<std::uint32_t>(i);
+}
+
+}  // namespace emergent

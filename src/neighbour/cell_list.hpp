@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: MIT
+// Cells over a domain and its ghost shell, for linear-cost neighbour search.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "emergent/vec3.hpp"
+
+namespace emergent {
+
+/// Regular cells over [lo - shell, hi + shell) whose faces fall on the domain faces, so every
+/// cell is either inside the domain (holds owned particles only) or in the ghost shell (holds
+/// ghosts only). Cells are at least `min_cell` wide: a pair closer than that lies in the same
+/// or adjacent cells.
+class CellList {
+public:
+    void setup(const Vec3& lo, const Vec3& hi, double shell, double min_cell);
+
+    /// Linear index of the cell holding x (positions just outside the grid are clamped).
+    int cell_of(const Vec3& x) const {
+        int c[3];
+        for (int d = 0; d < 3; ++d) {
+            int k = static_cast<int>((x[d] - origin_[d]) * inverse_width_[d]);
+            c[d] = k < 0 ? 0 : (k >= n_[d] ? n_[d] - 1 : k);
+        }
+        return (c[2] * n_[1] + c[1]) * n_[0] + c[0];
+    }
+
+    /// Order that sorts the first n positions by cell: order[k] = old index of new particle k.
+    void sort_order(const Vec3* x, std::size_t n, std::vector<std::uint32_t>& order);
+
+    /// Bins positions [0, n) into cells; members of a cell are listed in ascending index.
+    void bin(const Vec3* x, std::size_t n);
+
+    Int3 shape() const { return {n_[0], n_[1], n_[2]}; }
+    int n_cells() const { return n_[0] * n_[1] * n_[2]; }
+    bool is_inner(int cell) const { return inner_[cell] != 0; }
+    const std::uint32_t* members_begin(int cell) const { return &members_[start_[cell]]; }
+    const std::uint32_t* members_end(int cell) const { return &members_[start_[cell + 1]]; }
+
+private:
+    void count(const Vec3* x, std::size_t n);
+
+    Vec3 origin_{};
+    double inverse_width_[3] = {1, 1, 1};
+    int n_[3] = {1, 1, 1};
+    std::vector<char> inner_;
+    std::vector<std::uint32_t> start_, members_, cell_;
+};
+
+}  // namespace emergent

@@ -1,0 +1,50 @@
+// SPDX-License-Identifier: MIT
+// Verlet neighbour list with a skin, rebuilt only when some particle moved more than skin/2.
+#pragma once
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+#include "cell_list.hpp"
+#include "emergent/particle_store.hpp"
+
+namespace emergent {
+
+/// Half neighbour list over owned particles: pair (i, j) is listed once, under i, with j > i.
+/// Since ghosts are indexed after all owned particles, every owned–ghost pair is listed under
+/// its owned member; the rank owning the ghost lists the mirror pair, so no forces need to be
+/// sent back. Pairs closer than cutoff + skin at build time are listed; the list stays valid
+/// while no particle has moved more than skin/2.
+class NeighbourList {
+public:
+    NeighbourList() = default;
+    NeighbourList(double cutoff, double skin) : cutoff_(cutoff), skin_(skin) {}
+
+    double cutoff() const { return cutoff_; }
+    double skin() const { return skin_; }
+    double list_cutoff() const { return cutoff_ + skin_; }
+
+    /// Builds from positions of owned particles and ghosts binned in `cells`.
+    void build(const ParticleStore& store, const CellList& cells);
+
+    /// Largest squared displacement of an owned particle since the last build; NaN if any
+    /// position is not finite.
+    double max_displacement_sq(const ParticleStore& store) const;
+
+    /// True on every rank when some particle on any rank moved more than skin/2.
+    bool needs_rebuild(const ParticleStore& store, MPI_Comm comm) const;
+
+    std::size_t n_owned() const { return offset_.empty() ? 0 : offset_.size() - 1; }
+    std::size_t n_pairs() const { return neighbour_.size(); }
+    const std::uint32_t* offsets() const { return offset_.data(); }
+    const std::uint32_t* neighbours() const { return neighbour_.data(); }
+
+private:
+    double cutoff_ = 0, skin_ = 0;
+    std::vector<std::uint32_t> offset_, neighbour_;
+    std::vector<Vec3> built_at_;
+};
+
+}  // namespace emergent

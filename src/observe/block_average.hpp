@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: MIT
+// Mean and standard error of a correlated time series by block averaging.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace emergent {
+
+/// Collects samples and reports their mean and the standard error from `n_blocks` contiguous
+/// block means (Flyvbjerg–Petersen): blocks longer than the correlation time make the block
+/// means independent, so their scatter gives an honest error bar.
+class BlockAverage {
+public:
+    explicit BlockAverage(std::size_t n_blocks = 10) : n_blocks_(n_blocks) {}
+
+    void add(double x) { samples_.push_back(x); }
+    std::size_t count() const { return samples_.size(); }
+    const std::vector<double>& samples() const { return samples_; }
+
+    double mean() const {
+        double s = 0;
+        for (double x : samples_) s += x;
+        return samples_.empty() ? NAN : s / samples_.size();
+    }
+
+    /// Standard error of the mean; NaN with fewer than two samples per block.
+    double standard_error() const {
+        const std::size_t per_block = samples_.size() / n_blocks_;
+        if (per_block < 2) return NAN;
+        std::vector<double> means(n_blocks_, 0.0);
+        for (std::size_t b = 0; b < n_blocks_; ++b) {
+            for (std::size_t k = 0; k < per_block; ++k) means[b] += samples_[b * per_block + k];
+            means[b] /= per_block;
+        }
+        double m = 0;
+        for (double x : means) m += x;
+        m /= n_blocks_;
+        double var = 0;
+        for (double x : means) var += (x - m) * (x - m);
+        var /= (n_blocks_ - 1);
+        return std::sqrt(var / n_blocks_);
+    }
+
+private:
+    std::size_t n_blocks_;
+    std::vector<double> samples_;
+};
+
+}  // namespace emergent
