@@ -110,7 +110,10 @@ int main(int argc, char** argv) {
         // Seen by this rank only: the others may be waiting in a collective, so abort them.
         std::fprintf(stderr, "emergent: error on rank %d: %s [%s]\n", rank, e.what(), e.where());
         std::fflush(stderr);
-        MPI_Abort(MPI_COMM_WORLD, 3);
+        int size = 1;
+        MPI_Comm_size(MPI_COMM_WORLD, &size);
+        if (size > 1) MPI_Abort(MPI_COMM_WORLD, 3);
+        code = 3;
     } catch (const InstabilityError& e) {
         if (rank == 0) std::fprintf(stderr, "emergent: run stopped: %s\n", e.what());
         code = 3;

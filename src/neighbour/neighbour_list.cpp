@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <limits>
+#include <sstream>
+#include <stdexcept>
 
 #include "emergent/error.hpp"
 
@@ -14,6 +16,11 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells) {
     const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
     const Int3 shape = cells.shape();
+    // Precondition (the engine sorts owned particles by cell before each build): the list is
+    // stored in order of i, and inner cells earlier than i's cell hold only smaller indices.
+    for (std::size_t i = 1; i < n_owned; ++i)
+        if (cells.cell_of(x[i]) < cells.cell_of(x[i - 1]))
+            throw std::logic_error("NeighbourList::build: owned particles not sorted by cell");
     offset_.assign(n_owned + 1, 0);
     neighbour_.clear();
     // Owned particles are sorted by cell, so walking inner cells in order visits i ascending.
@@ -67,7 +74,16 @@ bool NeighbourList::needs_rebuild(const ParticleStore& store, MPI_Comm comm) con
     MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, comm);
     if (std::isinf(global))
         throw InstabilityError("non-finite particle position: the run went unstable "
-                         "(time step too large, overlapping start, or forces too strong)");
+                               "(time step too large, overlapping start, or forces too strong)");
+    // The list is rebuilt as soon as some particle passes skin/2, so a displacement beyond
+    // the whole ghost shell means one step jumped further than any pair range: a blow-up.
+    if (global > list_cutoff() * list_cutoff()) {
+        std::ostringstream msg;
+        msg << "a particle moved " << std::sqrt(global) << " sigma within one step, more than "
+            << "cutoff + skin = " << list_cutoff()
+            << ": the run went unstable (time step too large or forces too strong)";
+        throw InstabilityError(msg.str());
+    }
     return global > 0.25 * skin_ * skin_;
 }
 

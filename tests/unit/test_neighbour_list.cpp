@@ -1,0 +1,86 @@
+// SPDX-License-Identifier: MIT
+// The half Verlet list (cells + periodic ghosts) against a brute-force minimum-image search.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "decomposition/halo_exchange.hpp"
+#include "decomposition/rank_grid.hpp"
+#include "emergent/random.hpp"
+#include "neighbour/cell_list.hpp"
+#include "neighbour/neighbour_list.hpp"
+
+using namespace emergent;
+
+TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
+    Box box;
+    box.hi = {6.0, 7.5, 9.0};  // every edge > 2 (cutoff + skin): minimum image is unique
+    decomp::RankGrid grid(MPI_COMM_SELF, box);
+    ParticleStore store;
+    const int n = 600;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 x{uniform_open(3, i, 0) * 6.0, uniform_open(3, i, 1) * 7.5,
+                     uniform_open(3, i, 2) * 9.0};
+        store.add_owned(x, {0, 0, 0}, 0, i);
+    }
+    NeighbourList list(1.12, 0.38);
+    const double rl = list.list_cutoff();
+    CellList cells;
+    cells.setup(grid.lo(), grid.hi(), rl, rl);
+    std::vector<std::uint32_t> order;
+    cells.sort_order(store.position.data(), store.n_owned(), order);
+    store.permute_owned(order);
+    decomp::HaloExchange halo;
+    halo.build(store, grid, rl, kPosition | kId);
+    cells.bin(store.position.data(), store.size());
+    list.build(store, cells);
+
+    // An owned–owned pair is listed once; an owned–ghost pair (here: across the periodic
+    // boundary) is listed under each owned member, each taking half the pair's energy. So every
+    // true pair must be covered exactly twice: 2 for an owned–owned entry, 1 per directed
+    // owned–ghost entry.
+    std::map<std::pair<long, long>, int> coverage;
+    std::set<std::pair<long, long>> directed;
+    for (std::size_t i = 0; i < store.n_owned(); ++i)
+        for (auto k = list.offsets()[i]; k < list.offsets()[i + 1]; ++k) {
+            const std::uint32_t j = list.neighbours()[k];
+            const long a = store.id[i], b = store.id[j];
+            EXPECT_TRUE(directed.insert({a, b}).second) << "entry listed twice: " << a << " " << b;
+            coverage[{std::min(a, b), std::max(a, b)}] += j < store.n_owned() ? 2 : 1;
+        }
+    std::set<std::pair<long, long>> expected;
+    const Vec3 len = box.length();
+    for (int i = 0; i < n; ++i)
+        for (int j = i + 1; j < n; ++j) {
+            Vec3 r = store.position[i] - store.position[j];
+            for (int d = 0; d < 3; ++d) r[d] -= len[d] * std::round(r[d] / len[d]);
+            const long a = store.id[i], b = store.id[j];
+            if (dot(r, r) < rl * rl) expected.insert({std::min(a, b), std::max(a, b)});
+        }
+    EXPECT_EQ(coverage.size(), expected.size());
+    for (const auto& pair : expected) {
+        const auto it = coverage.find(pair);
+        ASSERT_NE(it, coverage.end()) << "missed pair " << pair.first << " " << pair.second;
+        EXPECT_EQ(it->second, 2) << pair.first << " " << pair.second;
+    }
+}
+
+TEST(NeighbourList, RebuildIsRequestedOnlyBeyondHalfTheSkin) {
+    Box box;
+    box.hi = {5, 5, 5};
+    decomp::RankGrid grid(MPI_COMM_SELF, box);
+    ParticleStore store;
+    store.add_owned({1, 1, 1}, {0, 0, 0}, 0, 0);
+    store.add_owned({3, 3, 3}, {0, 0, 0}, 0, 1);
+    NeighbourList list(1.0, 0.4);
+    CellList cells;
+    cells.setup(grid.lo(), grid.hi(), 1.4, 1.4);
+    cells.bin(store.position.data(), store.size());
+    list.build(store, cells);
+    store.position[1].x += 0.19;
+    EXPECT_FALSE(list.needs_rebuild(store, MPI_COMM_SELF));
+    store.position[1].x += 0.02;
+    EXPECT_TRUE(list.needs_rebuild(store, MPI_COMM_SELF));
+}
