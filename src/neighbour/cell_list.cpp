@@ -51,8 +51,13 @@ void CellList::sort_order(const Vec3* x, std::size_t n, std::vector<std::uint32_
 void CellList::bin(const Vec3* x, std::size_t n) {
     count(x, n);
     members_.resize(n);
+    binned_.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) members_[next[cell_[i]]++] = static_cast<std::uint32_t>(i);
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t slot = next[cell_[i]]++;
+        members_[slot] = static_cast<std::uint32_t>(i);
+        binned_[slot] = x[i];
+    }
 }
 
 }  // namespace emergent

@@ -38,6 +38,11 @@ public:
     bool is_inner(int cell) const { return inner_[cell] != 0; }
     const std::uint32_t* members_begin(int cell) const { return &members_[start_[cell]]; }
     const std::uint32_t* members_end(int cell) const { return &members_[start_[cell + 1]]; }
+    /// Slots of cell c are [first(c), first(c + 1)) in members and binned positions.
+    std::uint32_t first(int cell) const { return start_[cell]; }
+    const std::uint32_t* members() const { return members_.data(); }
+    /// Positions in cell order (a copy made by bin()), so a search streams through memory.
+    const Vec3* binned_positions() const { return binned_.data(); }
 
 private:
     void count(const Vec3* x, std::size_t n);
@@ -47,6 +52,7 @@ private:
     int n_[3] = {1, 1, 1};
     std::vector<char> inner_;
     std::vector<std::uint32_t> start_, members_, cell_;
+    std::vector<Vec3> binned_;
 };
 
 }  // namespace emergent

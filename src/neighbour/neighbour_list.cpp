@@ -16,40 +16,57 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells) {
     const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
     const Int3 shape = cells.shape();
+    using Real = double;
     // Precondition (the engine sorts owned particles by cell before each build): the list is
     // stored in order of i, and inner cells earlier than i's cell hold only smaller indices.
     for (std::size_t i = 1; i < n_owned; ++i)
         if (cells.cell_of(x[i]) < cells.cell_of(x[i - 1]))
             throw std::logic_error("NeighbourList::build: owned particles not sorted by cell");
     offset_.assign(n_owned + 1, 0);
-    neighbour_.clear();
-    // Owned particles are sorted by cell, so walking inner cells in order visits i ascending.
-    for (int cz = 0; cz < shape.z; ++cz)
-        for (int cy = 0; cy < shape.y; ++cy)
-            for (int cx = 0; cx < shape.x; ++cx) {
-                const int c = (cz * shape.y + cy) * shape.x + cx;
-                if (!cells.is_inner(c)) continue;
-                for (const std::uint32_t* pi = cells.members_begin(c); pi != cells.members_end(c);
-                     ++pi) {
-                    const std::uint32_t i = *pi;
-                    const Vec3 xi = x[i];
-                    for (int dz = -1; dz <= 1; ++dz)
-                        for (int dy = -1; dy <= 1; ++dy)
-                            for (int dx = -1; dx <= 1; ++dx) {
-                                const int c2 = ((cz + dz) * shape.y + cy + dy) * shape.x + cx + dx;
-                                // Inner cells before c hold only owned j < i.
-                                if (c2 < c && cells.is_inner(c2)) continue;
-                                for (const std::uint32_t* pj = cells.members_begin(c2);
-                                     pj != cells.members_end(c2); ++pj) {
-                                    const std::uint32_t j = *pj;
-                                    if (j <= i) continue;
-                                    const Vec3 r = xi - x[j];
-                                    if (dot(r, r) < r2max) neighbour_.push_back(j);
-                                }
-                            }
-                    offset_[i + 1] = static_cast<std::uint32_t>(neighbour_.size());
-                }
-            }
+    const std::uint32_t* member = cells.members();
+    const Vec3* xb = cells.binned_positions();
+    // Stencil: the 26 adjacent cells as offsets of the linear index. Inner cells always have
+    // all of them, since the grid carries at least one ghost layer.
+    int stencil[26], n_stencil = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx)
+                if (dx || dy || dz) stencil[n_stencil++] = (dz * shape.y + dy) * shape.x + dx;
+    std::size_t count = 0;
+    for (int c = 0; c < cells.n_cells(); ++c) {
+        if (!cells.is_inner(c)) continue;
+        // Inner cells before c hold only owned j < i; inner cells after c and ghost cells hold
+        // only j > i. Collect the slot ranges to search once per cell.
+        std::uint32_t range_begin[26], range_end[26], bound = 0;
+        int n_ranges = 0;
+        for (int s = 0; s < 26; ++s) {
+            const int c2 = c + stencil[s];
+            if (c2 < c && cells.is_inner(c2)) continue;
+            range_begin[n_ranges] = cells.first(c2);
+            range_end[n_ranges] = cells.first(c2 + 1);
+            bound += range_end[n_ranges] - range_begin[n_ranges];
+            ++n_ranges;
+        }
+        const std::uint32_t own_end = cells.first(c + 1);
+        bound += own_end - cells.first(c);
+        for (std::uint32_t a = cells.first(c); a < own_end; ++a) {
+            const std::uint32_t i = member[a];
+            const Vec3 xi = xb[a];
+            if (neighbour_.size() < count + bound) neighbour_.resize(2 * (count + bound));
+            std::uint32_t* out = neighbour_.data();
+            // Branch-free append: write every candidate, advance only past those in range.
+            auto consider = [&](std::uint32_t b) {
+                const Real dx = xi.x - xb[b].x, dy = xi.y - xb[b].y, dz = xi.z - xb[b].z;
+                out[count] = member[b];
+                count += (dx * dx + dy * dy + dz * dz < r2max) ? 1 : 0;
+            };
+            for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);
+            for (int r = 0; r < n_ranges; ++r)
+                for (std::uint32_t b = range_begin[r]; b < range_end[r]; ++b) consider(b);
+            offset_[i + 1] = static_cast<std::uint32_t>(count);
+        }
+    }
+    n_pairs_ = count;
     built_at_.assign(store.position.begin(), store.position.begin() + n_owned);
 }
 

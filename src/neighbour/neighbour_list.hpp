@@ -37,12 +37,13 @@ public:
     bool needs_rebuild(const ParticleStore& store, MPI_Comm comm) const;
 
     std::size_t n_owned() const { return offset_.empty() ? 0 : offset_.size() - 1; }
-    std::size_t n_pairs() const { return neighbour_.size(); }
+    std::size_t n_pairs() const { return n_pairs_; }
     const std::uint32_t* offsets() const { return offset_.data(); }
     const std::uint32_t* neighbours() const { return neighbour_.data(); }
 
 private:
     double cutoff_ = 0, skin_ = 0;
+    std::size_t n_pairs_ = 0;
     std::vector<std::uint32_t> offset_, neighbour_;
     std::vector<Vec3> built_at_;
 };
