@@ -85,6 +85,22 @@ bool RankGrid::wraps(int d, int side) const {
     return side == 0 ? coords_[d] == 0 : coords_[d] == dims_[d] - 1;
 }
 
+int RankGrid::rank_of(const Vec3& x) const {
+    int c[3];
+    const Vec3 len = global_.length();
+    for (int d = 0; d < 3; ++d) {
+        c[d] = static_cast<int>((x[d] - global_.lo[d]) / len[d] * dims_[d]);
+        c[d] = c[d] < 0 ? 0 : (c[d] >= dims_[d] ? dims_[d] - 1 : c[d]);
+        // Domain bounds are computed like lo_/hi_ above, so the two always agree.
+        while (c[d] > 0 && x[d] < global_.lo[d] + len[d] * c[d] / dims_[d]) --c[d];
+        while (c[d] + 1 < dims_[d] && x[d] >= global_.lo[d] + len[d] * (c[d] + 1) / dims_[d])
+            ++c[d];
+    }
+    int rank = 0;
+    MPI_Cart_rank(cart_, c, &rank);
+    return rank;
+}
+
 void RankGrid::require_width(double ghost_width) const {
     const Vec3 len = global_.length();
     for (int d = 0; d < 3; ++d) {

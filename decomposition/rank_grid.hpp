@@ -37,6 +37,9 @@ public:
     /// True if crossing face (d, side) wraps around the periodic global box.
     bool wraps(int d, int side) const;
 
+    /// Rank whose domain holds x (positions outside the box are clamped to the edge domains).
+    int rank_of(const Vec3& x) const;
+
     /// Throws InputError (collectively) when a sub-box is thinner than the ghost width.
     void require_width(double ghost_width) const;
 

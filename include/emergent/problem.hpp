@@ -19,8 +19,10 @@ class Simulation;
 class Problem {
 public:
     virtual ~Problem() = default;
-    /// Sets the box, species, force terms, thermostat and initial particles of `sim`.
+    /// Sets the box, species, force terms and thermostat of `sim`: everything but particles.
     virtual void build(Simulation& sim) = 0;
+    /// Adds the initial particles (not called when a run continues from a checkpoint).
+    virtual void place_particles(Simulation& sim) = 0;
 };
 
 /// Named sets of parameter values, e.g. presets["tiny"]["n_cells"] = "4".

@@ -74,6 +74,18 @@ public:
     /// with sample = true (or to initialise()).
     ThermoSample measure() const;
 
+    // --- checkpoints ---
+    /// Owned positions at the last neighbour-list build, in the order of particles().
+    const std::vector<Vec3>& list_reference_positions() const;
+    /// Rank whose domain holds x (after set_box).
+    int rank_of(const Vec3& x) const;
+    /// Continues a saved run instead of initialise(): `owned` holds this rank's particles,
+    /// `reference` their positions at the last list build (each particle must lie, at its
+    /// reference position, in this rank's domain). The list is rebuilt exactly as it was built
+    /// then, so a run continued on the same rank count retraces the original bit for bit.
+    void restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
+                 double time, long long rebuilds);
+
     // --- state ---
     ParticleStore& particles();
     const ParticleStore& particles() const;

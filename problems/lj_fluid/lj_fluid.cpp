@@ -28,7 +28,11 @@ public:
         if (config_.text("thermostat") == "bussi")
             sim.set_thermostat(
                 make_bussi_thermostat(temperature, config_.real("thermostat_tau"), seed + 1));
+    }
 
+    void place_particles(Simulation& sim) override {
+        const int cells = static_cast<int>(config_.integer("n_cells"));
+        const double a = sim.box().length().x / cells;
         const Vec3 basis[4] = {{0.25, 0.25, 0.25}, {0.75, 0.75, 0.25}, {0.75, 0.25, 0.75},
                                {0.25, 0.75, 0.75}};
         std::int64_t id = 0;
@@ -37,7 +41,8 @@ public:
                 for (int x = 0; x < cells; ++x)
                     for (const Vec3& b : basis)
                         sim.add_particle(a * Vec3{x + b.x, y + b.y, z + b.z}, {0, 0, 0}, 0, id++);
-        sim.assign_thermal_velocities(temperature, seed);
+        sim.assign_thermal_velocities(config_.real("temperature"),
+                                      static_cast<std::uint64_t>(config_.integer("seed")));
     }
 
 private:

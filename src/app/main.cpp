@@ -10,6 +10,7 @@
 #include "app/run.hpp"
 #include "emergent/error.hpp"
 #include "emergent/problem.hpp"
+#include "io/checkpoint.hpp"
 
 namespace po = boost::program_options;
 using namespace emergent;
@@ -20,7 +21,8 @@ const char* kUsage =
     "usage: emergent list\n"
     "       emergent help <scene>\n"
     "       emergent run <scene> [--preset P] [--config file.ini]... [--set key=value]...\n"
-    "                            [-o DIR] [--summary-json FILE]\n";
+    "                            [-o DIR] [--summary-json FILE] [--checkpoint-every N]\n"
+    "       emergent run --restart DIR/checkpoint.h5 [--set key=value]... [-o DIR]\n";
 
 const ProblemInfo& find_scene(const std::string& name) {
     const ProblemInfo* info = ProblemRegistry::instance().find(name);
@@ -57,20 +59,48 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
         "set", po::value<std::vector<std::string>>()->composing(), "key=value")(
         "output,o", po::value<std::string>()->default_value(""), "output directory")(
         "summary-json", po::value<std::string>()->default_value(""), "summary file")(
+        "restart", po::value<std::string>()->default_value(""), "checkpoint to continue")(
+        "checkpoint-every", po::value<long long>(), "steps between checkpoints")(
         "scene", po::value<std::string>(), "scene");
     po::positional_options_description positional;
     positional.add("scene", 1);
     po::variables_map vm;
     po::store(po::command_line_parser(args).options(options).positional(positional).run(), vm);
     po::notify(vm);
-    if (!vm.count("scene")) throw InputError("run: no scene given (see: emergent list)");
-    app::RunRequest req;
-    req.problem = &find_scene(vm["scene"].as<std::string>());
     auto list = [&](const char* key) {
         return vm.count(key) ? vm[key].as<std::vector<std::string>>() : std::vector<std::string>{};
     };
-    req.config = resolve_config(*req.problem, vm["preset"].as<std::string>(), list("config"),
-                                list("set"));
+    std::vector<std::string> sets;
+    io::CheckpointHeader checkpoint;
+    app::RunRequest req;
+    req.restart_file = vm["restart"].as<std::string>();
+    std::string scene = vm.count("scene") ? vm["scene"].as<std::string>() : "";
+    if (!req.restart_file.empty()) {
+        checkpoint = io::read_checkpoint_header(req.restart_file, comm);
+        if (!scene.empty() && scene != checkpoint.scene)
+            throw InputError("--restart: '" + req.restart_file + "' is a checkpoint of scene '" +
+                             checkpoint.scene + "', not '" + scene + "'");
+        if (!vm["preset"].as<std::string>().empty())
+            throw InputError("--restart: a continued run takes its parameters from the "
+                             "checkpoint; --preset cannot be combined with it");
+        scene = checkpoint.scene;
+        // The checkpoint's parameters first; --config and --set may then change e.g. steps.
+        for (const auto& [k, v] : checkpoint.config) sets.push_back(k + "=" + v);
+        req.restart = &checkpoint;
+    }
+    if (scene.empty()) throw InputError("run: no scene given (see: emergent list)");
+    req.problem = &find_scene(scene);
+    std::vector<std::string> files = list("config");
+    if (req.restart) {
+        // INI files apply after the checkpoint's values: fold them in as assignments.
+        for (const auto& f : files)
+            for (const auto& [k, v] : read_ini(f)) sets.push_back(k + "=" + v);
+        files.clear();
+    }
+    for (const auto& a : list("set")) sets.push_back(a);
+    if (vm.count("checkpoint-every"))
+        sets.push_back("checkpoint_every=" + std::to_string(vm["checkpoint-every"].as<long long>()));
+    req.config = resolve_config(*req.problem, vm["preset"].as<std::string>(), files, sets);
     req.output_dir = vm["output"].as<std::string>();
     req.summary_json = vm["summary-json"].as<std::string>();
     app::run_problem(req, comm);

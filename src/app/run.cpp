@@ -14,6 +14,8 @@
 #include "emergent/error.hpp"
 #include "emergent/simulation.hpp"
 #include "io/atomic_file.hpp"
+#include "io/checkpoint.hpp"
+#include "io/run_output.hpp"
 #include "observe/block_average.hpp"
 
 namespace emergent::app {
@@ -92,6 +94,9 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     settings.dt = cfg.real("dt");
     settings.skin = cfg.real("skin");
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
+    const long long checkpoint_every = cfg.integer("checkpoint_every");
+    if (checkpoint_every > 0 && req.output_dir.empty())
+        throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
     if (!req.output_dir.empty()) {
@@ -103,36 +108,59 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     }
 
     Simulation sim(comm, settings);
-    req.problem->factory(cfg)->build(sim);
-    sim.initialise();
+    auto problem = req.problem->factory(cfg);
+    problem->build(sim);
+    std::vector<ThermoSample> series;  // samples of the measured phase
+    if (req.restart) {
+        io::restore_checkpoint(req.restart_file, sim, *req.restart);
+        series = req.restart->series;
+    } else {
+        problem->place_particles(sim);
+        sim.initialise();
+    }
+    io::RunOutput output(req.output_dir, cfg, sim);
+    output.on_step(sim);
 
+    // Steps are counted globally (0 .. n_eq + n_steps), so a continued run takes the same
+    // sampling, output and checkpoint decisions as an uninterrupted one.
     const long long n_eq = cfg.integer("equilibration_steps");
     const long long n_steps = cfg.integer("steps");
+    const long long end = n_eq + n_steps;
     const long long every = cfg.integer("sample_every");
-    ProgressLine progress(cfg.real("progress_interval"), n_eq + n_steps, rank == 0);
-    for (long long k = 1; k <= n_eq; ++k) {
-        const bool sample = k % every == 0 || k == n_eq;
-        sim.step(sample);
-        if (sample) progress.maybe_print(sim.measure(), "(equilibration)");
-    }
-
-    std::vector<ThermoSample> series{sim.measure()};
-    BlockAverage temperature, pressure, potential;
+    ProgressLine progress(cfg.real("progress_interval"), end, rank == 0);
+    auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
+    if (sim.step_index() == n_eq && series.empty()) series.push_back(sim.measure());
     sim.reset_phase_times();
-    const auto t0 = Clock::now();
-    for (long long k = 1; k <= n_steps; ++k) {
-        const bool sample = k % every == 0 || k == n_steps;
-        sim.step(sample);
-        if (!sample) continue;
-        series.push_back(sim.measure());
-        const ThermoSample& t = series.back();
-        temperature.add(t.temperature);
-        pressure.add(t.pressure);
-        potential.add(t.potential);
-        progress.maybe_print(t, "");
+    const long long timed_from = std::max(sim.step_index(), n_eq);
+    Clock::time_point t0 = Clock::now();
+    while (sim.step_index() < end) {
+        if (sim.step_index() == n_eq) {  // the measured phase starts: time it alone
+            sim.reset_phase_times();
+            t0 = Clock::now();
+        }
+        const long long s = sim.step_index() + 1;
+        sim.step(sample_due(s));
+        output.on_step(sim);
+        if (sample_due(s)) {
+            const ThermoSample t = sim.measure();
+            output.on_sample(t);
+            if (s >= n_eq) series.push_back(t);
+            progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "");
+        }
+        if (checkpoint_every > 0 && s % checkpoint_every == 0)
+            io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series);
     }
     const double wall = decomp::max(comm, seconds_since(t0));
+    output.finish(sim);
 
+    BlockAverage temperature, pressure, potential;
+    for (std::size_t k = 1; k < series.size(); ++k) {
+        temperature.add(series[k].temperature);
+        pressure.add(series[k].pressure);
+        potential.add(series[k].potential);
+    }
+    if (series.empty()) series.push_back(sim.measure());
+    const long long timed_steps = end - timed_from;
     const PhaseTimes& p = sim.phase_times();
     const long long rss = decomp::sum(comm, peak_rss_bytes());
     const double n = static_cast<double>(sim.n_global());
@@ -147,7 +175,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
          << "  \"equilibration_steps\": " << n_eq << ",\n"
          << "  \"dt\": " << json_number(sim.dt()) << ",\n"
          << "  \"wall_seconds\": " << json_number(wall) << ",\n"
-         << "  \"atom_steps_per_second\": " << json_number(wall > 0 ? n * n_steps / wall : 0)
+         << "  \"atom_steps_per_second\": " << json_number(wall > 0 ? n * timed_steps / wall : 0)
          << ",\n"
          << "  \"neighbour_rebuilds\": " << sim.rebuilds() << ",\n"
          << "  \"samples\": " << temperature.count() << ",\n"

@@ -9,6 +9,7 @@
 #include "emergent/config.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/vec3.hpp"
+#include "io/checkpoint.hpp"
 
 namespace emergent::app {
 
@@ -17,6 +18,8 @@ struct RunRequest {
     Config config;
     std::string output_dir;    ///< empty: no files besides the summary
     std::string summary_json;  ///< empty: none
+    std::string restart_file;  ///< checkpoint to continue from
+    const io::CheckpointHeader* restart = nullptr;
 };
 
 /// Runs the scene on `comm`; progress goes to stdout on rank 0. Returns the summary as JSON.

@@ -41,7 +41,13 @@ Schema run_schema() {
                  "steps between samples of energy, temperature and pressure")
         .integer("seed", 12345, 0, 9.2e18, "1", "random seed (initial state, thermostat)")
         .text("grid", "auto", "rank grid as NXxNYxNZ (e.g. 2x1x1); auto minimises the ghost volume")
-        .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)");
+        .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
+        .integer("checkpoint_every", 0, 0, 1e12, "steps",
+                 "steps between checkpoints DIR/checkpoint.h5 (0: none; needs -o DIR)")
+        .integer("output.every", 0, 0, 1e12, "steps",
+                 "steps between particle frames in trajectory.h5 (0: first and last frame only)")
+        .text("output.elements", "position,velocity,species,id,image",
+              "particle elements written per frame (comma-separated)");
     return s;
 }
 

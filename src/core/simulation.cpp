@@ -56,12 +56,23 @@ struct Simulation::Engine {
 
     double ghost_width() const { return list.list_cutoff(); }
 
+    /// Sets up the list and cells for the force terms present, and counts particles.
+    void prepare() {
+        require_grid("initialise");
+        double cutoff = 0;
+        for (const auto& term : forces) cutoff = std::max(cutoff, term->cutoff());
+        list = NeighbourList(cutoff, settings.skin);
+        grid->require_width(ghost_width());
+        cells.setup(grid->lo(), grid->hi(), ghost_width(), ghost_width());
+        n_global = decomp::sum(comm, static_cast<long long>(store.n_owned()));
+    }
+
     /// Re-partitions particles and rebuilds ghosts, cells and the Verlet list.
     void rebuild() {
         PhaseTimer timer(times.neighbour);
         migration.apply(store, *grid);
         // Cell order gives the force loop neighbours that sit close in memory.
-        cells.sort_order(store.position.data(), store.n_owned(), order);
+        cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
         store.permute_owned(order);
         halo.build(store, *grid, ghost_width(), ghost_fields);
         cells.bin(store.position.data(), store.size());
@@ -197,14 +208,39 @@ void Simulation::assign_thermal_velocities(double temperature, std::uint64_t see
 
 void Simulation::initialise() {
     Engine& e = *engine_;
-    e.require_grid("initialise");
-    double cutoff = 0;
-    for (const auto& term : e.forces) cutoff = std::max(cutoff, term->cutoff());
-    e.list = NeighbourList(cutoff, e.settings.skin);
-    e.grid->require_width(e.ghost_width());
-    e.cells.setup(e.grid->lo(), e.grid->hi(), e.ghost_width(), e.ghost_width());
-    e.n_global = decomp::sum(e.comm, static_cast<long long>(e.store.n_owned()));
+    e.prepare();
     e.rebuild();
+    e.compute_forces(true);
+}
+
+const std::vector<Vec3>& Simulation::list_reference_positions() const {
+    return engine_->list.reference_positions();
+}
+
+int Simulation::rank_of(const Vec3& x) const {
+    engine_->require_grid("rank_of");
+    return engine_->grid->rank_of(x);
+}
+
+void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
+                         double time, long long rebuilds) {
+    Engine& e = *engine_;
+    e.store = std::move(owned);
+    ParticleStore& s = e.store;
+    if (reference.size() != s.n_owned()) throw std::logic_error("restore: size mismatch");
+    // The current positions ride in the force array (recomputed below) while the list is
+    // rebuilt from the positions it was originally built from.
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+        s.force[i] = s.position[i];
+        s.position[i] = reference[i];
+    }
+    e.prepare();
+    e.rebuild();
+    for (std::size_t i = 0; i < s.n_owned(); ++i) std::swap(s.position[i], s.force[i]);
+    e.halo.gather_positions(s);
+    e.step = step;
+    e.time = time;
+    e.rebuilds = rebuilds;
     e.compute_forces(true);
 }
 

@@ -41,11 +41,20 @@ void CellList::count(const Vec3* x, std::size_t n) {
     for (int c = 0; c < n_cells(); ++c) start_[c + 1] += start_[c];
 }
 
-void CellList::sort_order(const Vec3* x, std::size_t n, std::vector<std::uint32_t>& order) {
+void CellList::sort_order(const Vec3* x, const std::int64_t* id, std::size_t n,
+                          std::vector<std::uint32_t>& order) {
     count(x, n);
     order.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) order[next[cell_[i]]++] = static_cast<std::uint32_t>(i);
+    // A cell holds a few particles: insertion sort by id is cheapest.
+    for (int c = 0; c < n_cells(); ++c)
+        for (std::uint32_t k = start_[c] + 1; k < start_[c + 1]; ++k) {
+            const std::uint32_t moving = order[k];
+            std::uint32_t j = k;
+            for (; j > start_[c] && id[order[j - 1]] > id[moving]; --j) order[j] = order[j - 1];
+            order[j] = moving;
+        }
 }
 
 void CellList::bin(const Vec3* x, std::size_t n) {

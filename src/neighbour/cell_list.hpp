@@ -27,8 +27,11 @@ public:
         return (c[2] * n_[1] + c[1]) * n_[0] + c[0];
     }
 
-    /// Order that sorts the first n positions by cell: order[k] = old index of new particle k.
-    void sort_order(const Vec3* x, std::size_t n, std::vector<std::uint32_t>& order);
+    /// Order that sorts the first n particles by cell, and by id within a cell:
+    /// order[k] = old index of new particle k. Depending only on positions and ids (not on the
+    /// previous order) makes a restarted run retrace the original one bit for bit.
+    void sort_order(const Vec3* x, const std::int64_t* id, std::size_t n,
+                    std::vector<std::uint32_t>& order);
 
     /// Bins positions [0, n) into cells; members of a cell are listed in ascending index.
     void bin(const Vec3* x, std::size_t n);

@@ -36,6 +36,9 @@ public:
     /// True on every rank when some particle on any rank moved more than skin/2.
     bool needs_rebuild(const ParticleStore& store, MPI_Comm comm) const;
 
+    /// Owned positions when the list was built (the origin of the displacement check).
+    const std::vector<Vec3>& reference_positions() const { return built_at_; }
+
     std::size_t n_owned() const { return offset_.empty() ? 0 : offset_.size() - 1; }
     std::size_t n_pairs() const { return n_pairs_; }
     const std::uint32_t* offsets() const { return offset_.data(); }

@@ -30,7 +30,9 @@ inline std::unique_ptr<Simulation> make_scene(MPI_Comm comm, const std::string& 
     settings.skin = config.real("skin");
     settings.grid = app::parse_grid(scene, config.text("grid"));
     auto sim = std::make_unique<Simulation>(comm, settings);
-    ProblemRegistry::instance().find(scene)->factory(config)->build(*sim);
+    auto problem = ProblemRegistry::instance().find(scene)->factory(config);
+    problem->build(*sim);
+    problem->place_particles(*sim);
     sim->initialise();
     return sim;
 }

@@ -30,7 +30,7 @@ TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
     CellList cells;
     cells.setup(grid.lo(), grid.hi(), rl, rl);
     std::vector<std::uint32_t> order;
-    cells.sort_order(store.position.data(), store.n_owned(), order);
+    cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
     store.permute_owned(order);
     decomp::HaloExchange halo;
     halo.build(store, grid, rl, kPosition | kId);

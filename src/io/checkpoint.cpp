@@ -1,0 +1,165 @@
+// SPDX-License-Identifier: MIT
+// Checkpoint writing and restoring.
+#include "io/checkpoint.hpp"
+
+#include <cstdio>
+
+#include "decomposition/distributor.hpp"
+#include "emergent/build_info.hpp"
+#include "emergent/error.hpp"
+#include "io/h5.hpp"
+#include "io/id_order.hpp"
+
+namespace emergent::io {
+
+namespace {
+constexpr const char* kFormat = "emergent-checkpoint-1";
+constexpr int kSeriesColumns = 11;
+
+std::vector<double> pack_series(const std::vector<ThermoSample>& series) {
+    std::vector<double> rows;
+    for (const ThermoSample& t : series)
+        rows.insert(rows.end(), {static_cast<double>(t.step), t.time, static_cast<double>(t.n),
+                                 t.kinetic, t.potential, t.total, t.temperature, t.pressure,
+                                 t.momentum.x, t.momentum.y, t.momentum.z});
+    return rows;
+}
+}  // namespace
+
+void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
+                      const std::vector<ThermoSample>& series) {
+    MPI_Comm comm = sim.comm();
+    const std::string tmp = path + ".tmp";
+    {
+        H5Id file = create_file(tmp, comm);
+        H5Id root = create_group(file, "checkpoint");
+        write_attribute(root, "format", std::string(kFormat));
+        write_attribute(root, "scene", config.scene());
+        write_attribute(root, "step", sim.step_index());
+        write_attribute(root, "time", sim.time());
+        write_attribute(root, "rebuilds", sim.rebuilds());
+        write_attribute(root, "n_global", sim.n_global());
+        write_attribute(root, "ranks", static_cast<long long>(sim.n_ranks()));
+        write_attribute(root, "emergent_version", std::string(build::version));
+        write_attribute(root, "git_commit", std::string(build::git_commit));
+        {
+            H5Id params = create_group(root, "config");
+            for (const auto& [key, value] : config.values()) write_attribute(params, key, value);
+        }
+        const std::vector<double> rows = pack_series(series);
+        write_small_dataset(root, "series", H5T_NATIVE_DOUBLE,
+                            {series.size(), static_cast<hsize_t>(kSeriesColumns)}, rows.data(),
+                            comm);
+
+        ParticleStore& s = sim.particles();
+        const IdOrder order(comm, s.id.data(), s.n_owned(), sim.n_global());
+        auto put = [&](const char* name, hid_t type, int width, const void* field,
+                       std::size_t bytes) {
+            const std::vector<char> block = order.gather(field, bytes);
+            write_rows(root, name, type, sim.n_global(), width, block.data(), order.first(),
+                       order.count());
+        };
+        put("position", H5T_NATIVE_DOUBLE, 3, s.position.data(), sizeof(Vec3));
+        put("velocity", H5T_NATIVE_DOUBLE, 3, s.velocity.data(), sizeof(Vec3));
+        put("image", H5T_NATIVE_INT, 3, s.image.data(), sizeof(Int3));
+        put("species", H5T_NATIVE_INT, 0, s.species.data(), sizeof(int));
+        put("reference_position", H5T_NATIVE_DOUBLE, 3, sim.list_reference_positions().data(),
+            sizeof(Vec3));
+    }
+    // Every rank has closed the file; only then does it replace the previous checkpoint.
+    MPI_Barrier(comm);
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    int failed = 0;
+    if (rank == 0) failed = std::rename(tmp.c_str(), path.c_str()) != 0;
+    MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+    if (failed) throw InputError("cannot rename '" + tmp + "' to '" + path + "'");
+}
+
+CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) {
+    H5Id file = open_file(path, comm, false);
+    if (!exists(file, "checkpoint")) throw InputError("'" + path + "' is not an emergent checkpoint");
+    H5Id root = open_group(file, "checkpoint");
+    if (H5Aexists(root, "format") <= 0 || read_string_attribute(root, "format") != kFormat)
+        throw InputError("'" + path + "' is not an emergent checkpoint of format " + kFormat);
+    CheckpointHeader h;
+    h.scene = read_string_attribute(root, "scene");
+    h.step = read_integer_attribute(root, "step");
+    h.time = read_double_attribute(root, "time");
+    h.rebuilds = read_integer_attribute(root, "rebuilds");
+    h.n_global = read_integer_attribute(root, "n_global");
+    h.ranks = static_cast<int>(read_integer_attribute(root, "ranks"));
+    {
+        H5Id params = open_group(root, "config");
+        H5O_info_t info;
+        H5Oget_info(params, &info);
+        for (hsize_t k = 0; k < info.num_attrs; ++k) {
+            char name[256];
+            H5Aget_name_by_idx(params, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name,
+                               H5P_DEFAULT);
+            h.config[name] = read_string_attribute(params, name);
+        }
+    }
+    H5Id set(h5_check(H5Dopen2(root, "series", H5P_DEFAULT), "checkpoint series"));
+    H5Id space(H5Dget_space(set));
+    hsize_t dims[2] = {0, 0};
+    H5Sget_simple_extent_dims(space, dims, nullptr);
+    std::vector<double> rows(dims[0] * kSeriesColumns);
+    if (dims[0] > 0) {
+        H5Id xfer = collective_transfer();
+        h5_check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer, rows.data()),
+                 "checkpoint series");
+    }
+    for (hsize_t k = 0; k < dims[0]; ++k) {
+        const double* r = &rows[k * kSeriesColumns];
+        ThermoSample t;
+        t.step = static_cast<long long>(r[0]);
+        t.time = r[1];
+        t.n = static_cast<long long>(r[2]);
+        t.kinetic = r[3], t.potential = r[4], t.total = r[5], t.temperature = r[6];
+        t.pressure = r[7], t.momentum = {r[8], r[9], r[10]};
+        h.series.push_back(t);
+    }
+    return h;
+}
+
+void restore_checkpoint(const std::string& path, Simulation& sim, const CheckpointHeader& h) {
+    MPI_Comm comm = sim.comm();
+    int rank = 0, n_ranks = 1;
+    MPI_Comm_rank(comm, &rank);
+    MPI_Comm_size(comm, &n_ranks);
+    const decomp::IdBlocks blocks{h.n_global, n_ranks};
+    const long long first = blocks.first(rank);
+    const auto count = static_cast<std::size_t>(blocks.first(rank + 1) - first);
+    std::vector<Vec3> x(count), v(count), ref(count);
+    std::vector<Int3> image(count);
+    std::vector<int> species(count);
+    std::vector<std::int64_t> id(count);
+    {
+        H5Id file = open_file(path, comm, false);
+        H5Id root = open_group(file, "checkpoint");
+        read_rows(root, "position", H5T_NATIVE_DOUBLE, 3, x.data(), first, count);
+        read_rows(root, "velocity", H5T_NATIVE_DOUBLE, 3, v.data(), first, count);
+        read_rows(root, "reference_position", H5T_NATIVE_DOUBLE, 3, ref.data(), first, count);
+        read_rows(root, "image", H5T_NATIVE_INT, 3, image.data(), first, count);
+        read_rows(root, "species", H5T_NATIVE_INT, 0, species.data(), first, count);
+    }
+    for (std::size_t k = 0; k < count; ++k) id[k] = first + static_cast<long long>(k);
+    // Each particle goes to the rank whose domain held it when the list was last built.
+    std::vector<int> destination(count);
+    for (std::size_t k = 0; k < count; ++k) destination[k] = sim.rank_of(ref[k]);
+    const decomp::Distributor plan(comm, destination);
+    const auto mx = plan.apply(x), mv = plan.apply(v), mref = plan.apply(ref);
+    const auto mimage = plan.apply(image);
+    const auto mspecies = plan.apply(species);
+    const auto mid = plan.apply(id);
+    ParticleStore owned;
+    for (std::size_t k = 0; k < plan.n_import(); ++k) {
+        owned.add_owned(mx[k], mv[k], mspecies[k], mid[k]);
+        owned.image[k] = mimage[k];
+    }
+    sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,
+                h.rebuilds);
+}
+
+}  // namespace emergent::io

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// Checkpoints: everything needed to continue a run exactly, in one HDF5 file.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "emergent/config.hpp"
+#include "emergent/simulation.hpp"
+
+namespace emergent::io {
+
+/// What a checkpoint says about the run besides its particles.
+struct CheckpointHeader {
+    std::string scene;
+    std::map<std::string, std::string> config;  ///< every resolved parameter
+    long long step = 0, rebuilds = 0, n_global = 0;
+    double time = 0;
+    int ranks = 0;                              ///< rank count that wrote it
+    std::vector<ThermoSample> series;           ///< samples of the measured phase so far
+};
+
+/// Writes the state of `sim` to `path` atomically (path.tmp, then rename). Collective.
+void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
+                      const std::vector<ThermoSample>& series);
+
+/// Reads the header; InputError if the file is missing, truncated or not a checkpoint.
+CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm);
+
+/// Loads the particles into `sim` (box, forces and species already built) and continues the
+/// run at the saved step, on any rank count. Collective.
+void restore_checkpoint(const std::string& path, Simulation& sim, const CheckpointHeader& header);
+
+}  // namespace emergent::io

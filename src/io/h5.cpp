@@ -1,0 +1,185 @@
+// SPDX-License-Identifier: MIT
+// Checked parallel-HDF5 helpers.
+#include "io/h5.hpp"
+
+#include "emergent/error.hpp"
+
+namespace emergent::io {
+
+void H5Id::reset() {
+    if (id_ < 0) return;
+    switch (H5Iget_type(id_)) {
+        case H5I_FILE: H5Fclose(id_); break;
+        case H5I_GROUP: H5Gclose(id_); break;
+        case H5I_DATASET: H5Dclose(id_); break;
+        case H5I_DATASPACE: H5Sclose(id_); break;
+        case H5I_DATATYPE: H5Tclose(id_); break;
+        case H5I_ATTR: H5Aclose(id_); break;
+        case H5I_GENPROP_LST: H5Pclose(id_); break;
+        default: break;
+    }
+    id_ = -1;
+}
+
+hid_t h5_check(hid_t status, const std::string& what) {
+    if (status < 0) throw InputError(what + ": HDF5 call failed");
+    return status;
+}
+
+namespace {
+H5Id file_access(MPI_Comm comm) {
+    H5Id fapl(h5_check(H5Pcreate(H5P_FILE_ACCESS), "file access list"));
+    h5_check(H5Pset_fapl_mpio(fapl, comm, MPI_INFO_NULL), "MPI-IO driver");
+    // Metadata written collectively: every rank must make the same metadata calls.
+    H5Pset_all_coll_metadata_ops(fapl, true);
+    H5Pset_coll_metadata_write(fapl, true);
+    return fapl;
+}
+
+H5Id string_type(std::size_t length) {
+    H5Id type(H5Tcopy(H5T_C_S1));
+    H5Tset_size(type, length == 0 ? 1 : length);
+    H5Tset_strpad(type, H5T_STR_NULLTERM);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    return type;
+}
+
+void write_raw_attribute(hid_t object, const std::string& name, hid_t type, hid_t space,
+                         const void* data) {
+    if (H5Aexists(object, name.c_str()) > 0) H5Adelete(object, name.c_str());
+    H5Id attr(h5_check(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
+                       "attribute " + name));
+    h5_check(H5Awrite(attr, type, data), "attribute " + name);
+}
+}  // namespace
+
+H5Id create_file(const std::string& path, MPI_Comm comm) {
+    H5Id fapl = file_access(comm);
+    const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    if (f < 0) throw InputError("cannot create HDF5 file '" + path + "'");
+    return H5Id(f);
+}
+
+H5Id open_file(const std::string& path, MPI_Comm comm, bool writable) {
+    H5Id fapl = file_access(comm);
+    hid_t f = -1;
+    H5E_BEGIN_TRY { f = H5Fopen(path.c_str(), writable ? H5F_ACC_RDWR : H5F_ACC_RDONLY, fapl); }
+    H5E_END_TRY;
+    if (f < 0) throw InputError("cannot open '" + path + "': missing, truncated or not HDF5");
+    return H5Id(f);
+}
+
+H5Id create_group(hid_t parent, const std::string& name) {
+    return H5Id(h5_check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                         "group " + name));
+}
+
+H5Id open_group(hid_t parent, const std::string& name) {
+    return H5Id(h5_check(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "group " + name));
+}
+
+bool exists(hid_t parent, const std::string& path) {
+    // Check each component, as H5Lexists requires its parents to exist.
+    std::string partial;
+    std::size_t start = 0;
+    while (start <= path.size()) {
+        const std::size_t slash = path.find('/', start);
+        partial = path.substr(0, slash == std::string::npos ? path.size() : slash);
+        if (!partial.empty() && H5Lexists(parent, partial.c_str(), H5P_DEFAULT) <= 0) return false;
+        if (slash == std::string::npos) break;
+        start = slash + 1;
+    }
+    return true;
+}
+
+void write_attribute(hid_t object, const std::string& name, const std::string& value) {
+    H5Id type = string_type(value.size());
+    H5Id space(H5Screate(H5S_SCALAR));
+    write_raw_attribute(object, name, type, space, value.c_str());
+}
+
+void write_attribute(hid_t object, const std::string& name, const std::vector<std::string>& v) {
+    std::size_t width = 1;
+    for (const auto& s : v) width = std::max(width, s.size() + 1);
+    std::vector<char> packed(width * v.size(), '\0');
+    for (std::size_t k = 0; k < v.size(); ++k) v[k].copy(&packed[k * width], v[k].size());
+    H5Id type = string_type(width);
+    const hsize_t n = v.size();
+    H5Id space(H5Screate_simple(1, &n, nullptr));
+    write_raw_attribute(object, name, type, space, packed.data());
+}
+
+void write_attribute(hid_t object, const std::string& name, const std::vector<int>& value) {
+    const hsize_t n = value.size();
+    H5Id space(H5Screate_simple(1, &n, nullptr));
+    write_raw_attribute(object, name, H5T_NATIVE_INT, space, value.data());
+}
+
+void write_attribute(hid_t object, const std::string& name, long long value) {
+    H5Id space(H5Screate(H5S_SCALAR));
+    write_raw_attribute(object, name, H5T_NATIVE_LLONG, space, &value);
+}
+
+void write_attribute(hid_t object, const std::string& name, double value) {
+    H5Id space(H5Screate(H5S_SCALAR));
+    write_raw_attribute(object, name, H5T_NATIVE_DOUBLE, space, &value);
+}
+
+std::string read_string_attribute(hid_t object, const std::string& name) {
+    H5Id attr(h5_check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "attribute " + name));
+    H5Id type(H5Aget_type(attr));
+    if (H5Tget_class(type) != H5T_STRING) throw InputError("attribute " + name + " is not text");
+    if (H5Tis_variable_str(type) > 0) {
+        char* text = nullptr;
+        H5Id memtype(H5Tcopy(H5T_C_S1));
+        H5Tset_size(memtype, H5T_VARIABLE);
+        h5_check(H5Aread(attr, memtype, &text), "attribute " + name);
+        std::string out = text ? text : "";
+        H5free_memory(text);
+        return out;
+    }
+    std::vector<char> buf(H5Tget_size(type) + 1, '\0');
+    h5_check(H5Aread(attr, type, buf.data()), "attribute " + name);
+    return std::string(buf.data());
+}
+
+long long read_integer_attribute(hid_t object, const std::string& name) {
+    H5Id attr(h5_check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "attribute " + name));
+    long long v = 0;
+    h5_check(H5Aread(attr, H5T_NATIVE_LLONG, &v), "attribute " + name);
+    return v;
+}
+
+double read_double_attribute(hid_t object, const std::string& name) {
+    H5Id attr(h5_check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "attribute " + name));
+    double v = 0;
+    h5_check(H5Aread(attr, H5T_NATIVE_DOUBLE, &v), "attribute " + name);
+    return v;
+}
+
+void write_small_dataset(hid_t parent, const std::string& name, hid_t type,
+                         const std::vector<hsize_t>& shape, const void* data, MPI_Comm comm) {
+    H5Id space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr));
+    H5Id set(h5_check(H5Dcreate2(parent, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT,
+                                 H5P_DEFAULT),
+                      "dataset " + name));
+    hsize_t elements = 1;
+    for (hsize_t d : shape) elements *= d;
+    if (elements == 0) return;  // an empty dataset has nothing to write (and no storage)
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    H5Id xfer = collective_transfer();
+    H5Id file_space(H5Dget_space(set));
+    if (rank != 0) H5Sselect_none(file_space);
+    H5Id mem_space(H5Screate_simple(static_cast<int>(shape.size()), shape.data(), nullptr));
+    if (rank != 0) H5Sselect_none(mem_space);
+    h5_check(H5Dwrite(set, type, mem_space, file_space, xfer, data), "dataset " + name);
+}
+
+H5Id collective_transfer() {
+    H5Id xfer(H5Pcreate(H5P_DATASET_XFER));
+    H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE);
+    return xfer;
+}
+
+}  // namespace emergent::io

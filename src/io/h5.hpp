@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// Thin, checked helpers over the parallel HDF5 C API.
+#pragma once
+
+#include <hdf5.h>
+#include <mpi.h>
+
+#include <string>
+#include <vector>
+
+namespace emergent::io {
+
+/// Owns one HDF5 identifier and closes it with the right H5*close.
+class H5Id {
+public:
+    H5Id() = default;
+    explicit H5Id(hid_t id) : id_(id) {}
+    ~H5Id() { reset(); }
+    H5Id(H5Id&& o) noexcept : id_(o.id_) { o.id_ = -1; }
+    H5Id& operator=(H5Id&& o) noexcept {
+        if (this != &o) {
+            reset();
+            id_ = o.id_;
+            o.id_ = -1;
+        }
+        return *this;
+    }
+    H5Id(const H5Id&) = delete;
+    H5Id& operator=(const H5Id&) = delete;
+    operator hid_t() const { return id_; }
+    void reset();
+
+private:
+    hid_t id_ = -1;
+};
+
+/// Throws InputError "what: HDF5 call failed" when `status` < 0; returns it otherwise.
+hid_t h5_check(hid_t status, const std::string& what);
+
+/// Creates (truncating) or opens a file for collective access by all ranks of `comm`.
+H5Id create_file(const std::string& path, MPI_Comm comm);
+H5Id open_file(const std::string& path, MPI_Comm comm, bool writable);
+
+H5Id create_group(hid_t parent, const std::string& name);
+H5Id open_group(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& path);
+
+void write_attribute(hid_t object, const std::string& name, const std::string& value);
+void write_attribute(hid_t object, const std::string& name, const std::vector<std::string>& v);
+void write_attribute(hid_t object, const std::string& name, const std::vector<int>& value);
+void write_attribute(hid_t object, const std::string& name, long long value);
+void write_attribute(hid_t object, const std::string& name, double value);
+std::string read_string_attribute(hid_t object, const std::string& name);
+long long read_integer_attribute(hid_t object, const std::string& name);
+double read_double_attribute(hid_t object, const std::string& name);
+
+/// Small dataset written whole by rank 0 (all ranks call it: metadata is collective).
+void write_small_dataset(hid_t parent, const std::string& name, hid_t type,
+                         const std::vector<hsize_t>& shape, const void* data, MPI_Comm comm);
+
+/// Transfer property for collective writes and reads.
+H5Id collective_transfer();
+
+}  // namespace emergent::io

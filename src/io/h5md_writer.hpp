@@ -1,0 +1,56 @@
+// SPDX-License-Identifier: MIT
+// Particle snapshots and observables in H5MD 1.1, written collectively by all ranks.
+#pragma once
+
+#include <mpi.h>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "emergent/box.hpp"
+#include "emergent/config.hpp"
+#include "emergent/particle_store.hpp"
+#include "io/time_series.hpp"
+
+namespace emergent::io {
+
+/// What a trajectory file describes: the run's configuration and its box.
+struct H5mdMetadata {
+    const Config* config = nullptr;
+    Box box;
+    long long n_global = 0;
+    std::vector<std::string> elements;  ///< of: position, velocity, species, id, image
+};
+
+/// An H5MD file: /h5md (version, author, creator), /parameters (every resolved parameter,
+/// build version and commit, rank count), /particles/all/{box, position, ...} and
+/// /observables/<name>. Frames are stored in particle-id order whatever the rank count, since
+/// particles are first sent to the rank that writes their id block.
+class H5mdWriter {
+public:
+    H5mdWriter(const std::string& path, MPI_Comm comm, const H5mdMetadata& meta);
+    ~H5mdWriter();
+
+    /// Appends one frame of every configured element. Collective.
+    void write_particles(ParticleStore& store, long long step, double time);
+
+    /// Appends one value (scalar if size 1, else a vector) to /observables/<name>. Collective:
+    /// every rank calls it with the same arguments; rank 0 writes.
+    void write_observable(const std::string& name, long long step, double time,
+                          const std::vector<double>& value);
+
+    /// Marks the file complete (attribute /h5md/emergent_complete = 1) and closes it.
+    void finish();
+
+    static const std::vector<std::string>& known_elements();
+
+private:
+    MPI_Comm comm_;
+    H5mdMetadata meta_;
+    H5Id file_, particles_, observables_;
+    std::map<std::string, std::unique_ptr<TimeSeries>> series_;
+};
+
+}  // namespace emergent::io
