@@ -29,3 +29,4 @@ inline double max(MPI_Comm comm, double local) {
 }
 
 }  // namespace emergent::decomp
+

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "decomposition/exact_sum.hpp"
 #include "decomposition/halo_exchange.hpp"
 #include "decomposition/migration.hpp"
 #include "decomposition/rank_grid.hpp"
@@ -189,20 +190,26 @@ void Simulation::assign_thermal_velocities(double temperature, std::uint64_t see
     Engine& e = *engine_;
     ParticleStore& s = e.store;
     e.n_global = decomp::sum(e.comm, static_cast<long long>(s.n_owned()));
-    double p[4] = {0, 0, 0, 0};  // momentum and total mass
+    // Exact (order-independent) sums: the initial state is bitwise the same on any rank count.
+    decomp::ExactSum p[3], total_mass, kinetic;
     for (std::size_t i = 0; i < s.n_owned(); ++i) {
         const double m = e.mass[s.species[i]];
         const auto id = static_cast<std::uint64_t>(s.id[i]);
-        for (int d = 0; d < 3; ++d)
+        for (int d = 0; d < 3; ++d) {
             s.velocity[i][d] = std::sqrt(temperature / m) * gaussian(seed, id, d);
-        for (int d = 0; d < 3; ++d) p[d] += m * s.velocity[i][d];
-        p[3] += m;
+            p[d].add(m * s.velocity[i][d]);
+        }
+        total_mass.add(m);
     }
-    decomp::sum_in_place(e.comm, p, 4);
-    const Vec3 drift{p[0] / p[3], p[1] / p[3], p[2] / p[3]};
-    for (std::size_t i = 0; i < s.n_owned(); ++i) s.velocity[i] -= drift;
-    const double kinetic = decomp::sum(e.comm, e.local_kinetic());
-    const double factor = kinetic > 0 ? std::sqrt(0.5 * e.dof() * temperature / kinetic) : 0.0;
+    const double mass = total_mass.global(e.comm);
+    const Vec3 drift{p[0].global(e.comm) / mass, p[1].global(e.comm) / mass,
+                     p[2].global(e.comm) / mass};
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+        s.velocity[i] -= drift;
+        kinetic.add(0.5 * e.mass[s.species[i]] * dot(s.velocity[i], s.velocity[i]));
+    }
+    const double k = kinetic.global(e.comm);
+    const double factor = k > 0 ? std::sqrt(0.5 * e.dof() * temperature / k) : 0.0;
     for (std::size_t i = 0; i < s.n_owned(); ++i) s.velocity[i] *= factor;
 }
 
