@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "emergent/config.hpp"
+#include "emergent/field_grid.hpp"
 
 namespace emergent {
 
@@ -23,6 +24,8 @@ public:
     virtual void build(Simulation& sim) = 0;
     /// Adds the initial particles (not called when a run continues from a checkpoint).
     virtual void place_particles(Simulation& sim) = 0;
+    /// Grids the scene coarse-grains on, besides the run's `fields.grid` box grid.
+    virtual std::vector<FieldGrid> field_grids(const Simulation& /*sim*/) const { return {}; }
 };
 
 /// Named sets of parameter values, e.g. presets["tiny"]["n_cells"] = "4".

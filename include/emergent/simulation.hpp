@@ -100,6 +100,7 @@ public:
     double dt() const;
     long long rebuilds() const;
     double degrees_of_freedom() const;
+    const std::vector<double>& species_masses() const;
     const PhaseTimes& phase_times() const;
     void reset_phase_times();
 

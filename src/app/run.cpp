@@ -118,7 +118,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         problem->place_particles(sim);
         sim.initialise();
     }
-    io::RunOutput output(req.output_dir, cfg, sim);
+    io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim));
     output.on_step(sim);
 
     // Steps are counted globally (0 .. n_eq + n_steps), so a continued run takes the same

@@ -44,6 +44,11 @@ Schema run_schema() {
         .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
         .integer("checkpoint_every", 0, 0, 1e12, "steps",
                  "steps between checkpoints DIR/checkpoint.h5 (0: none; needs -o DIR)")
+        .integer("fields.interval", 0, 0, 1e12, "steps",
+                 "steps averaged into one frame of coarse-grained fields (0: no fields)")
+        .integer("fields.sample_every", 10, 1, 1e9, "steps", "steps between field samples")
+        .text("fields.grid", "1x1x10",
+              "NXxNYxNZ cells of the box-wide Cartesian field grid (scenes may add their own)")
         .integer("output.every", 0, 0, 1e12, "steps",
                  "steps between particle frames in trajectory.h5 (0: first and last frame only)")
         .text("output.elements", "position,velocity,species,id,image",

@@ -41,7 +41,7 @@ struct Simulation::Engine {
     Box box;
     std::unique_ptr<decomp::RankGrid> grid;
     ParticleStore store;
-    std::vector<Real> mass{1.0}, inverse_mass{1.0};
+    std::vector<double> mass{1.0}, inverse_mass{1.0};
     std::vector<std::unique_ptr<ForceTerm>> forces;
     std::unique_ptr<Thermostat> thermostat;
     decomp::Migration migration;
@@ -302,6 +302,7 @@ double Simulation::time() const { return engine_->time; }
 double Simulation::dt() const { return engine_->settings.dt; }
 long long Simulation::rebuilds() const { return engine_->rebuilds; }
 double Simulation::degrees_of_freedom() const { return engine_->dof(); }
+const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }
 const PhaseTimes& Simulation::phase_times() const { return engine_->times; }
 void Simulation::reset_phase_times() { engine_->times = PhaseTimes{}; }
 

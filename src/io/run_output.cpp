@@ -25,10 +25,31 @@ std::vector<std::string> parse_elements(const std::string& scene, const std::str
     return items;
 }
 
-RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& sim) {
+FieldGrid parse_box_grid(const std::string& scene, const std::string& text, const Box& box) {
+    FieldGrid g;
+    char x1 = 0, x2 = 0, extra = 0;
+    std::istringstream in(text);
+    if (!(in >> g.n.x >> x1 >> g.n.y >> x2 >> g.n.z) || x1 != 'x' || x2 != 'x' || (in >> extra) ||
+        g.n.x < 1 || g.n.y < 1 || g.n.z < 1)
+        throw InputError(scene + ": fields.grid=" + text + " must be NXxNYxNZ, e.g. 1x1x20");
+    g.name = "box";
+    g.lo = box.lo;
+    g.hi = box.hi;
+    return g;
+}
+
+RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& sim,
+                     std::vector<FieldGrid> grids) {
     every_ = config.integer("output.every");
     const auto elements = parse_elements(config.scene(), config.text("output.elements"));
+    field_interval_ = config.integer("fields.interval");
+    field_sample_every_ = config.integer("fields.sample_every");
+    grids.insert(grids.begin(), parse_box_grid(config.scene(), config.text("fields.grid"), sim.box()));
     if (dir.empty()) return;
+    if (field_interval_ > 0) {
+        for (const FieldGrid& g : grids) fields_.emplace_back(g);
+        if (sim.rank() == 0) field_writer_ = std::make_unique<FieldWriter>(dir, grids);
+    }
     H5mdMetadata meta;
     meta.config = &config;
     meta.box = sim.box();
@@ -53,6 +74,18 @@ void RunOutput::on_sample(const ThermoSample& t) {
 void RunOutput::on_step(Simulation& sim) {
     if (!trajectory_) return;
     const long long step = sim.step_index();
+    // Frame k averages samples in (step_k - interval, step_k]: the state a run starts from
+    // is not sampled, and neither is a step seen twice.
+    const bool fresh_step = step > last_field_step_;
+    last_field_step_ = std::max(last_field_step_, step);
+    if (!fields_.empty() && fresh_step && first_step_seen_ && step % field_sample_every_ == 0)
+        for (auto& f : fields_) f.add(sim.particles(), sim.species_masses(), sim.box());
+    first_step_seen_ = true;
+    if (!fields_.empty() && step % field_interval_ == 0 && fields_.front().samples() > 0)
+        for (std::size_t g = 0; g < fields_.size(); ++g) {
+            const FieldFrame frame = fields_[g].take(sim.comm());
+            if (field_writer_) field_writer_->write(g, step, sim.time(), frame);
+        }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
     trajectory_->write_particles(sim.particles(), step, sim.time());

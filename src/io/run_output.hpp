@@ -7,15 +7,21 @@
 
 #include "emergent/config.hpp"
 #include "emergent/simulation.hpp"
+#include "io/field_writer.hpp"
 #include "io/h5md_writer.hpp"
+#include "observe/field_accumulator.hpp"
 
 namespace emergent::io {
 
 /// Writes DIR/trajectory.h5 (H5MD): particle frames every `output.every` steps (0: first and
-/// last only) and the thermodynamic observables at every sample. Inactive when dir is empty.
+/// last only) and the thermodynamic observables at every sample; and, when `fields.interval`
+/// > 0, coarse-grained fields averaged over each interval into DIR/fields.h5 + fields.xmf.
+/// Inactive (and costs nothing) when dir is empty.
 class RunOutput {
 public:
-    RunOutput(const std::string& dir, const Config& config, Simulation& sim);
+    /// grids: the scene's own field grids (the box grid of `fields.grid` is added here).
+    RunOutput(const std::string& dir, const Config& config, Simulation& sim,
+              std::vector<FieldGrid> grids);
     ~RunOutput();
 
     /// Records the observables of a sample.
@@ -28,6 +34,11 @@ public:
 private:
     std::unique_ptr<H5mdWriter> trajectory_;
     long long every_ = 0, last_frame_ = -1;
+    // Coarse-grained fields: accumulated on every rank, written by rank 0.
+    std::vector<FieldAccumulator> fields_;
+    std::unique_ptr<FieldWriter> field_writer_;
+    long long field_interval_ = 0, field_sample_every_ = 1, last_field_step_ = -1;
+    bool first_step_seen_ = false;
 };
 
 /// Splits "a,b,c" into its items (spaces ignored); throws InputError for unknown items.

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// Coarse-graining accumulator.
+#include "observe/field_accumulator.hpp"
+
+#include <cmath>
+
+namespace emergent {
+
+namespace {
+constexpr int kSums = 6;  // count, mass, px, py, pz, m v^2
+}
+
+FieldAccumulator::FieldAccumulator(const FieldGrid& grid)
+    : grid_(grid), sums_(static_cast<std::size_t>(grid.n_cells()) * kSums, 0.0) {}
+
+void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>& species_mass,
+                           const Box& box) {
+    const Vec3 len = box.length();
+    for (std::size_t i = 0; i < store.n_owned(); ++i) {
+        Vec3 x = store.position[i];
+        for (int d = 0; d < 3; ++d)
+            if (box.periodic[d]) x[d] -= len[d] * std::floor((x[d] - box.lo[d]) / len[d]);
+        const int c = grid_.cell_of(x);
+        if (c < 0) continue;
+        const double m = species_mass[store.species[i]];
+        const Vec3& v = store.velocity[i];
+        double* s = &sums_[static_cast<std::size_t>(c) * kSums];
+        s[0] += 1;
+        s[1] += m;
+        s[2] += m * v.x;
+        s[3] += m * v.y;
+        s[4] += m * v.z;
+        s[5] += m * dot(v, v);
+    }
+    ++samples_;
+}
+
+FieldFrame FieldAccumulator::take(MPI_Comm comm) {
+    MPI_Allreduce(MPI_IN_PLACE, sums_.data(), static_cast<int>(sums_.size()), MPI_DOUBLE, MPI_SUM,
+                  comm);
+    const int n = grid_.n_cells();
+    FieldFrame f;
+    f.density.resize(n);
+    f.velocity.resize(3 * static_cast<std::size_t>(n));
+    f.temperature.resize(n);
+    f.count.resize(n);
+    for (int c = 0; c < n; ++c) {
+        const double* s = &sums_[static_cast<std::size_t>(c) * kSums];
+        f.count[c] = s[0];
+        f.density[c] = samples_ > 0 ? s[0] / (samples_ * grid_.cell_volume(c)) : 0.0;
+        const double p2 = s[2] * s[2] + s[3] * s[3] + s[4] * s[4];
+        for (int d = 0; d < 3; ++d) f.velocity[3 * c + d] = s[1] > 0 ? s[2 + d] / s[1] : 0.0;
+        // sum m (v - u)^2 = sum m v^2 - |sum m v|^2 / sum m, over 3(n - 1) degrees of freedom.
+        f.temperature[c] = s[0] > 1 ? (s[5] - p2 / s[1]) / (3 * (s[0] - 1)) : NAN;
+    }
+    std::fill(sums_.begin(), sums_.end(), 0.0);
+    samples_ = 0;
+    return f;
+}
+
+}  // namespace emergent

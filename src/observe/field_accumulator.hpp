@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// Coarse-grained density, flow velocity and temperature on a grid, averaged over an interval.
+#pragma once
+
+#include <mpi.h>
+
+#include <vector>
+
+#include "emergent/box.hpp"
+#include "emergent/field_grid.hpp"
+#include "emergent/particle_store.hpp"
+
+namespace emergent {
+
+/// Averages of one interval on one grid, as reduced over all ranks.
+struct FieldFrame {
+    std::vector<double> density;      ///< particles per unit volume
+    std::vector<double> velocity;     ///< mass-weighted mean flow, 3 per cell (x, y, z)
+    std::vector<double> temperature;  ///< from velocity fluctuations about the cell's mean flow
+    std::vector<double> count;        ///< particle samples that fell in the cell
+};
+
+/// Accumulates per-cell sums over samples; cost per sample is proportional to the particles
+/// (one cell lookup each), and the cells are reduced across ranks only when a frame is taken.
+class FieldAccumulator {
+public:
+    explicit FieldAccumulator(const FieldGrid& grid);
+
+    const FieldGrid& grid() const { return grid_; }
+    long long samples() const { return samples_; }
+
+    /// Adds the owned particles of one instant. Positions are folded into `box` along its
+    /// periodic axes first (between list builds particles may sit just outside it).
+    void add(const ParticleStore& store, const std::vector<double>& species_mass, const Box& box);
+
+    /// Reduces over ranks, returns the interval's averages (complete on rank 0) and restarts.
+    /// Temperature uses the unbiased estimate with 3(n - 1) degrees of freedom per cell; cells
+    /// with fewer than two samples get NaN temperature and zero flow.
+    FieldFrame take(MPI_Comm comm);
+
+private:
+    FieldGrid grid_;
+    long long samples_ = 0;
+    // Per cell: count, mass, momentum (3), m v^2.
+    std::vector<double> sums_;
+};
+
+}  // namespace emergent

@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+// Coarse-graining recovers known flow, temperature and density fields from synthetic particles.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "emergent/random.hpp"
+#include "observe/field_accumulator.hpp"
+
+using namespace emergent;
+
+namespace {
+/// Particles uniform in [0, L)^3 with velocity u(x) + Maxwell noise at temperature T (m = 1).
+/// Closed box: the synthetic particles are never outside it.
+Box closed_box(double L) {
+    Box b;
+    b.hi = {L, L, L};
+    b.periodic[0] = b.periodic[1] = b.periodic[2] = false;
+    return b;
+}
+
+template <class Flow>
+void fill(ParticleStore& s, int n, double L, double T, std::uint64_t seed, Flow flow) {
+    s.resize_owned(0);
+    for (int i = 0; i < n; ++i) {
+        const Vec3 x{L * uniform_open(seed, i, 0), L * uniform_open(seed, i, 1),
+                     L * uniform_open(seed, i, 2)};
+        Vec3 v = flow(x);
+        for (int d = 0; d < 3; ++d) v[d] += std::sqrt(T) * gaussian(seed, i, 3 + d);
+        s.add_owned(x, v, 0, i);
+    }
+}
+}  // namespace
+
+TEST(FieldAccumulator, UniformFlowGivesFlowAndTemperatureInEveryCell) {
+    const double L = 10, T = 1.5, rho = 0.8;
+    const int n = static_cast<int>(rho * L * L * L);
+    FieldGrid grid;
+    grid.n = {2, 2, 5};
+    grid.hi = {L, L, L};
+    FieldAccumulator acc(grid);
+    const Box box = closed_box(L);
+    ParticleStore s;
+    const int samples = 40;
+    for (int k = 0; k < samples; ++k) {
+        fill(s, n, L, T, 100 + k, [](const Vec3&) { return Vec3{0.7, -0.2, 0.1}; });
+        acc.add(s, {1.0}, box);
+    }
+    const FieldFrame f = acc.take(MPI_COMM_SELF);
+    for (int c = 0; c < grid.n_cells(); ++c) {
+        const double count = f.count[c];  // ~ 40 * 800 / 20 = 1600 samples per cell
+        // Standard error of a cell mean: sqrt(T / count) ~ 0.03; of T: T sqrt(2 / (3 count))
+        // ~ 0.03. Five standard errors: a false alarm is ~1e-6 per cell.
+        const double se_u = std::sqrt(T / count), se_t = T * std::sqrt(2.0 / (3 * count));
+        EXPECT_NEAR(f.velocity[3 * c + 0], 0.7, 5 * se_u);
+        EXPECT_NEAR(f.velocity[3 * c + 1], -0.2, 5 * se_u);
+        EXPECT_NEAR(f.velocity[3 * c + 2], 0.1, 5 * se_u);
+        EXPECT_NEAR(f.temperature[c], T, 5 * se_t);
+        // Density: Poisson counts, relative error 1/sqrt(count).
+        EXPECT_NEAR(f.density[c], rho, 5 * rho / std::sqrt(count));
+    }
+    EXPECT_EQ(acc.samples(), 0);  // take() restarts the interval
+}
+
+TEST(FieldAccumulator, LinearShearProfileIsRecovered) {
+    const double L = 12, T = 1.0, rate = 0.25;
+    FieldGrid grid;
+    grid.n = {1, 1, 12};  // slabs along z
+    grid.hi = {L, L, L};
+    FieldAccumulator acc(grid);
+    const Box box = closed_box(L);
+    ParticleStore s;
+    for (int k = 0; k < 30; ++k) {
+        fill(s, 1400, L, T, 500 + k, [&](const Vec3& x) { return Vec3{rate * (x.z - L / 2), 0, 0}; });
+        acc.add(s, {1.0}, box);
+    }
+    const FieldFrame f = acc.take(MPI_COMM_SELF);
+    for (int c = 0; c < 12; ++c) {
+        const double z = (c + 0.5) * L / 12;
+        const double se = std::sqrt(T / f.count[c]);
+        EXPECT_NEAR(f.velocity[3 * c], rate * (z - L / 2), 5 * se) << "slab " << c;
+        // Within a slab the flow varies by rate * dz = 0.25 across the slab: a variance of
+        // (rate dz)^2 / 12 ~ 0.005 adds to the fluctuations, inside the tolerance.
+        EXPECT_NEAR(f.temperature[c], T, 5 * T * std::sqrt(2.0 / (3 * f.count[c])) + 0.006);
+    }
+}
+
+TEST(FieldAccumulator, CylindricalCellsHaveTheRightVolumeAndRotation) {
+    // Solid-body rotation about the z axis through (5, 5): u = omega z^ x r. Density is uniform,
+    // which checks the cell volumes; since u is linear in x, a cell's mean flow equals the flow
+    // at the cell's mean particle position, which the test computes independently.
+    const double L = 10, T = 1.0, omega = 0.3;
+    FieldGrid grid;
+    grid.kind = FieldGrid::Kind::Cylindrical;
+    grid.axis = 2;
+    grid.lo = {5, 5, 0};
+    grid.hi = {5, 5, L};
+    grid.r_min = 1;
+    grid.r_max = 5;
+    grid.n = {4, 6, 1};  // 4 rings x 6 sectors
+    auto flow = [&](const Vec3& x) { return Vec3{-omega * (x.y - 5), omega * (x.x - 5), 0}; };
+    FieldAccumulator acc(grid);
+    const Box box = closed_box(L);
+    ParticleStore s;
+    std::vector<Vec3> centroid(grid.n_cells(), Vec3{0, 0, 0});
+    std::vector<double> hits(grid.n_cells(), 0);
+    for (int k = 0; k < 60; ++k) {
+        fill(s, 800, L, T, 900 + k, flow);
+        acc.add(s, {1.0}, box);
+        for (std::size_t i = 0; i < s.n_owned(); ++i) {
+            const int c = grid.cell_of(s.position[i]);
+            if (c >= 0) centroid[c] += s.position[i], hits[c] += 1;
+        }
+    }
+    const FieldFrame f = acc.take(MPI_COMM_SELF);
+    for (int c = 0; c < grid.n_cells(); ++c) {
+        ASSERT_EQ(f.count[c], hits[c]);
+        EXPECT_NEAR(f.density[c], 0.8, 5 * 0.8 / std::sqrt(f.count[c])) << "cell " << c;
+        const Vec3 expected = flow((1.0 / hits[c]) * centroid[c]);
+        const double se = std::sqrt(T / f.count[c]);
+        EXPECT_NEAR(f.velocity[3 * c], expected.x, 5 * se) << "cell " << c;
+        EXPECT_NEAR(f.velocity[3 * c + 1], expected.y, 5 * se) << "cell " << c;
+    }
+}
