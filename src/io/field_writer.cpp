@@ -82,9 +82,10 @@ std::string dims_text(const std::vector<hsize_t>& d) {
 }
 }  // namespace
 
-FieldWriter::FieldWriter(const std::string& dir, const std::vector<FieldGrid>& grids)
-    : dir_(dir), grids_(grids), frames_(grids.size()) {
-    const std::string path = dir + "/fields.h5";
+FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
+                         const std::vector<FieldGrid>& grids)
+    : dir_(dir), stem_(stem), grids_(grids), frames_(grids.size()) {
+    const std::string path = dir + "/" + stem + ".h5";
     file_ = H5Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
     if (file_ < 0) throw InputError("cannot create '" + path + "'");
     H5Id fields = create_group(file_, "fields");
@@ -186,7 +187,7 @@ void FieldWriter::write_sidecar() const {
                 x << "    <Topology TopologyType=\"3DSMesh\" Dimensions=\"" << dims_text(nodes)
                   << "\"/>\n    <Geometry GeometryType=\"XYZ\">\n"
                   << "     <DataItem Dimensions=\"" << dims_text(nodes) << " 3\" NumberType=\"Float\" "
-                  << "Precision=\"8\" Format=\"HDF\">fields.h5:/fields/" << grid.name
+                  << "Precision=\"8\" Format=\"HDF\">" << stem_ << ".h5:/fields/" << grid.name
                   << "/nodes</DataItem>\n    </Geometry>\n";
             } else {
                 const Vec3 h{(grid.hi.x - grid.lo.x) / grid.n.x, (grid.hi.y - grid.lo.y) / grid.n.y,
@@ -206,7 +207,7 @@ void FieldWriter::write_sidecar() const {
                 x << "    <Attribute Name=\"" << q << "\" AttributeType=\""
                   << (vector ? "Vector" : "Scalar") << "\" Center=\"Cell\">\n"
                   << "     <DataItem Dimensions=\"" << dims_text(dims)
-                  << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">fields.h5:/fields/"
+                  << "\" NumberType=\"Float\" Precision=\"8\" Format=\"HDF\">" << stem_ << ".h5:/fields/"
                   << grid.name << "/" << q << "/frames/" << frame_name(k)
                   << "</DataItem>\n    </Attribute>\n";
             }
@@ -215,7 +216,7 @@ void FieldWriter::write_sidecar() const {
         x << "  </Grid>\n";
     }
     x << " </Domain>\n</Xdmf>\n";
-    write_atomically(dir_ + "/fields.xmf", x.str());
+    write_atomically(dir_ + "/" + stem_ + ".xmf", x.str());
 }
 
 }  // namespace emergent::io

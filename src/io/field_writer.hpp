@@ -20,7 +20,8 @@ namespace emergent::io {
 /// the XDMF sidecar points at, so every ParaView XDMF reader opens it as a time series.
 class FieldWriter {
 public:
-    FieldWriter(const std::string& dir, const std::vector<FieldGrid>& grids);
+    /// Writes DIR/STEM.h5 and DIR/STEM.xmf.
+    FieldWriter(const std::string& dir, const std::string& stem, const std::vector<FieldGrid>& grids);
     ~FieldWriter();
 
     /// Appends one frame of grid `g` and rewrites the sidecar (atomically).
@@ -29,7 +30,7 @@ public:
 private:
     void write_sidecar() const;
 
-    std::string dir_;
+    std::string dir_, stem_;
     std::vector<FieldGrid> grids_;
     std::vector<std::vector<std::pair<long long, double>>> frames_;  // per grid: (step, time)
     H5Id file_;

@@ -46,16 +46,20 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
     field_sample_every_ = config.integer("fields.sample_every");
     grids.insert(grids.begin(), parse_box_grid(config.scene(), config.text("fields.grid"), sim.box()));
     if (dir.empty()) return;
+    const std::string suffix =
+        sim.step_index() > 0 ? ".from" + std::to_string(sim.step_index()) : std::string();
     if (field_interval_ > 0) {
         for (const FieldGrid& g : grids) fields_.emplace_back(g);
-        if (sim.rank() == 0) field_writer_ = std::make_unique<FieldWriter>(dir, grids);
+        if (sim.rank() == 0)
+            field_writer_ = std::make_unique<FieldWriter>(dir, "fields" + suffix, grids);
     }
     H5mdMetadata meta;
     meta.config = &config;
     meta.box = sim.box();
     meta.n_global = sim.n_global();
     meta.elements = elements;
-    trajectory_ = std::make_unique<H5mdWriter>(dir + "/trajectory.h5", sim.comm(), meta);
+    trajectory_ =
+        std::make_unique<H5mdWriter>(dir + "/trajectory" + suffix + ".h5", sim.comm(), meta);
 }
 
 RunOutput::~RunOutput() = default;

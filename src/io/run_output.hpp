@@ -20,6 +20,9 @@ namespace emergent::io {
 class RunOutput {
 public:
     /// grids: the scene's own field grids (the box grid of `fields.grid` is added here).
+    /// A run continued from a checkpoint (sim.step_index() > 0 at construction) writes
+    /// trajectory.from<step>.h5 and fields.from<step>.h5, never overwriting the files of the
+    /// run it continues.
     RunOutput(const std::string& dir, const Config& config, Simulation& sim,
               std::vector<FieldGrid> grids);
     ~RunOutput();

@@ -13,8 +13,13 @@ common=(--set n_cells=6 --set equilibration_steps=100 --set sample_every=20 --se
 run 2 lj-fluid "${common[@]}" --set steps=400 -o "$dir/straight"
 # Stopped after 250 steps (checkpoint there), then continued to the same end.
 run 2 lj-fluid "${common[@]}" --set steps=150 --checkpoint-every 250 -o "$dir/first"
-run 2 --restart "$dir/first/checkpoint.h5" --set steps=400 --set checkpoint_every=0 -o "$dir/same"
+cp "$dir/first/trajectory.h5" "$dir/first_trajectory_before.h5"
+# Continued into its own directory: the original trajectory must stay as it was.
+run 2 --restart "$dir/first/checkpoint.h5" --set steps=400 --set checkpoint_every=0 -o "$dir/first"
+cmp "$dir/first/trajectory.h5" "$dir/first_trajectory_before.h5"
+mkdir -p "$dir/same" && mv "$dir/first/trajectory.from250.h5" "$dir/same/trajectory.h5"
 run 3 --restart "$dir/first/checkpoint.h5" --set steps=400 --set checkpoint_every=0 -o "$dir/other"
+mv "$dir/other/trajectory.from250.h5" "$dir/other/trajectory.h5"
 /usr/bin/python3 - "$dir" <<'PY'
 import sys, h5py, numpy as np
 d = sys.argv[1]
