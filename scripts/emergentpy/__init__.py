@@ -1,0 +1,90 @@
+"""Reading emergent's output files (h5py, numpy): the base of the figure scripts.
+
+    from emergentpy import Run
+    run = Run("out/lj")
+    t, T = run.observable("temperature")
+    step, x = run.frame("position", -1)        # last frame, particles in id order
+    times, rho = run.field("box", "density")   # [frames, n_s, n_y, n_x]
+"""
+import glob
+import os
+
+import h5py
+import numpy as np
+
+
+class Run:
+    """One output directory: trajectory.h5 (H5MD), fields.h5, summary.json."""
+
+    def __init__(self, directory, trajectory="trajectory.h5", fields="fields.h5"):
+        self.directory = directory
+        self.trajectory_path = os.path.join(directory, trajectory)
+        self.fields_path = os.path.join(directory, fields)
+
+    def _trajectory(self):
+        return h5py.File(self.trajectory_path, "r")
+
+    def parameters(self):
+        """Every resolved run parameter, as text."""
+        with self._trajectory() as f:
+            return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["parameters"].attrs.items()}
+
+    def complete(self):
+        with self._trajectory() as f:
+            return int(f["h5md"].attrs.get("emergent_complete", 0)) == 1
+
+    def observables(self):
+        with self._trajectory() as f:
+            return sorted(f["observables"].keys())
+
+    def observable(self, name):
+        """(time, value) arrays of /observables/<name>."""
+        with self._trajectory() as f:
+            g = f["observables"][name]
+            return g["time"][:], g["value"][:]
+
+    def frame(self, element, index=-1):
+        """(step, value) of one frame of a particle element, in particle-id order."""
+        with self._trajectory() as f:
+            g = f["particles/all"][element]
+            return int(g["step"][index]), g["value"][index]
+
+    def box(self):
+        with self._trajectory() as f:
+            b = f["particles/all/box"]
+            offset = b["offset"][:] if "offset" in b else np.zeros(3)
+            return offset, offset + b["edges"][:]
+
+    def unwrapped_positions(self, index=-1):
+        """Positions plus image counts times the box edges."""
+        _, x = self.frame("position", index)
+        _, image = self.frame("image", index)
+        lo, hi = self.box()
+        return x + image * (hi - lo)
+
+    def field_grids(self):
+        with h5py.File(self.fields_path, "r") as f:
+            return sorted(f["fields"].keys())
+
+    def field(self, grid, quantity):
+        """(time, value) of a coarse-grained field; value is [frames, n_s, n_y|theta, n_x|r(, 3)]."""
+        with h5py.File(self.fields_path, "r") as f:
+            g = f["fields"][grid][quantity]
+            return g["time"][:], g["value"][:]
+
+    def field_axes(self, grid):
+        """Cell-centre coordinates along the grid's three axes (x|r, y|theta, z|s)."""
+        with h5py.File(self.fields_path, "r") as f:
+            g = f["fields"][grid]
+            n = g.attrs["shape"]
+            if g.attrs["kind"] in (b"cylindrical", "cylindrical"):
+                axis = int(g.attrs["axis"])
+                lo = [g.attrs["r_min"], g.attrs["theta_min"], g.attrs["lo"][axis]]
+                hi = [g.attrs["r_max"], g.attrs["theta_max"], g.attrs["hi"][axis]]
+            else:
+                lo, hi = g.attrs["lo"], g.attrs["hi"]
+            return [lo[d] + (np.arange(n[d]) + 0.5) * (hi[d] - lo[d]) / n[d] for d in range(3)]
+
+    def segments(self):
+        """The trajectory files of this directory: the original and continued runs."""
+        return sorted(glob.glob(os.path.join(self.directory, "trajectory*.h5")))

@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# The figure scripts read a run's files and write PNG images.
+# usage: figure_scripts.sh EMERGENT SCRIPTS_DIR
+set -euo pipefail
+exe=$1
+scripts=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+"$exe" run lj-fluid --preset tiny --set fields.interval=100 --set fields.grid=4x1x6 \
+  --set progress_interval=0 -o "$dir" >/dev/null
+"$scripts/plot_observables" "$dir" "$dir/obs.png" >/dev/null
+"$scripts/plot_field_slice" "$dir" box density "$dir/rho.png" >/dev/null
+for png in "$dir/obs.png" "$dir/rho.png"; do
+  # A PNG signature and more than a blank canvas's worth of bytes.
+  [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || { echo "FAIL: $png is not a PNG"; exit 1; }
+  [ "$(stat -c %s "$png")" -gt 10000 ] || { echo "FAIL: $png is nearly empty"; exit 1; }
+done
+/usr/bin/python3 - "$dir" "$scripts" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[2])
+from emergentpy import Run
+run = Run(sys.argv[1])
+assert run.complete()
+assert run.parameters()["scene"] == "lj-fluid"
+step, x = run.frame("position", -1)
+assert step == 400 and x.shape == (256, 3)
+t, rho = run.field("box", "density")
+assert rho.shape == (4, 6, 1, 4), rho.shape
+print("ok: figure scripts wrote PNGs; emergentpy reads the run")
+PY
