@@ -119,6 +119,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         sim.initialise();
     }
     io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim));
+    if (req.restart) output.restore_fields(*req.restart, rank);
     output.on_step(sim);
 
     // Steps are counted globally (0 .. n_eq + n_steps), so a continued run takes the same
@@ -148,7 +149,8 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
             progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "");
         }
         if (checkpoint_every > 0 && s % checkpoint_every == 0)
-            io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series);
+            io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series,
+                                 output.fields());
     }
     const double wall = decomp::max(comm, seconds_since(t0));
     output.finish(sim);

@@ -27,7 +27,8 @@ std::vector<double> pack_series(const std::vector<ThermoSample>& series) {
 }  // namespace
 
 void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
-                      const std::vector<ThermoSample>& series) {
+                      const std::vector<ThermoSample>& series,
+                      const std::vector<FieldAccumulator>& fields) {
     MPI_Comm comm = sim.comm();
     const std::string tmp = path + ".tmp";
     {
@@ -50,6 +51,17 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         write_small_dataset(root, "series", H5T_NATIVE_DOUBLE,
                             {series.size(), static_cast<hsize_t>(kSeriesColumns)}, rows.data(),
                             comm);
+
+        {
+            H5Id group = create_group(root, "fields");
+            for (const FieldAccumulator& acc : fields) {
+                const std::vector<double> sums = acc.global_sums(comm);
+                write_small_dataset(group, acc.grid().name, H5T_NATIVE_DOUBLE, {sums.size()},
+                                    sums.data(), comm);
+                H5Id set = H5Id(H5Dopen2(group, acc.grid().name.c_str(), H5P_DEFAULT));
+                write_attribute(set, "samples", acc.samples());
+            }
+        }
 
         ParticleStore& s = sim.particles();
         const IdOrder order(comm, s.id.data(), s.n_owned(), sim.n_global());
@@ -119,6 +131,25 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
         t.kinetic = r[3], t.potential = r[4], t.total = r[5], t.temperature = r[6];
         t.pressure = r[7], t.momentum = {r[8], r[9], r[10]};
         h.series.push_back(t);
+    }
+    if (exists(root, "fields")) {
+        H5Id group = open_group(root, "fields");
+        H5G_info_t info;
+        H5Gget_info(group, &info);
+        for (hsize_t k = 0; k < info.nlinks; ++k) {
+            char name[256];
+            H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name,
+                               H5P_DEFAULT);
+            H5Id set(h5_check(H5Dopen2(group, name, H5P_DEFAULT), "checkpoint field"));
+            H5Id fspace(H5Dget_space(set));
+            std::vector<double> sums(static_cast<std::size_t>(H5Sget_simple_extent_npoints(fspace)));
+            if (!sums.empty()) {
+                H5Id xfer = collective_transfer();
+                h5_check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer, sums.data()),
+                         "checkpoint field");
+            }
+            h.fields[name] = {sums, read_integer_attribute(set, "samples")};
+        }
     }
     return h;
 }

@@ -8,6 +8,7 @@
 
 #include "emergent/config.hpp"
 #include "emergent/simulation.hpp"
+#include "observe/field_accumulator.hpp"
 
 namespace emergent::io {
 
@@ -19,11 +20,14 @@ struct CheckpointHeader {
     double time = 0;
     int ranks = 0;                              ///< rank count that wrote it
     std::vector<ThermoSample> series;           ///< samples of the measured phase so far
+    /// Field intervals in progress: grid name -> (global sums, samples).
+    std::map<std::string, std::pair<std::vector<double>, long long>> fields;
 };
 
 /// Writes the state of `sim` to `path` atomically (path.tmp, then rename). Collective.
 void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
-                      const std::vector<ThermoSample>& series);
+                      const std::vector<ThermoSample>& series,
+                      const std::vector<FieldAccumulator>& fields);
 
 /// Reads the header; InputError if the file is missing, truncated or not a checkpoint.
 CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm);

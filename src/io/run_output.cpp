@@ -96,6 +96,13 @@ void RunOutput::on_step(Simulation& sim) {
     last_frame_ = step;
 }
 
+void RunOutput::restore_fields(const CheckpointHeader& checkpoint, int rank) {
+    for (FieldAccumulator& f : fields_) {
+        const auto it = checkpoint.fields.find(f.grid().name);
+        if (it != checkpoint.fields.end()) f.restore(it->second.first, it->second.second, rank);
+    }
+}
+
 void RunOutput::finish(Simulation& sim) {
     if (!trajectory_) return;
     if (sim.step_index() != last_frame_)

@@ -7,6 +7,7 @@
 
 #include "emergent/config.hpp"
 #include "emergent/simulation.hpp"
+#include "io/checkpoint.hpp"
 #include "io/field_writer.hpp"
 #include "io/h5md_writer.hpp"
 #include "observe/field_accumulator.hpp"
@@ -33,6 +34,11 @@ public:
     void on_step(Simulation& sim);
     /// Writes the last frame (unless just written) and marks the file complete.
     void finish(Simulation& sim);
+
+    /// Field accumulators (empty when fields are off), for checkpoints.
+    const std::vector<FieldAccumulator>& fields() const { return fields_; }
+    /// Continues the field intervals a checkpoint had in progress.
+    void restore_fields(const CheckpointHeader& checkpoint, int rank);
 
 private:
     std::unique_ptr<H5mdWriter> trajectory_;

@@ -3,6 +3,7 @@
 #include "observe/field_accumulator.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace emergent {
 
@@ -33,6 +34,20 @@ void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>
         s[5] += m * dot(v, v);
     }
     ++samples_;
+}
+
+std::vector<double> FieldAccumulator::global_sums(MPI_Comm comm) const {
+    std::vector<double> total(sums_.size());
+    MPI_Allreduce(sums_.data(), total.data(), static_cast<int>(sums_.size()), MPI_DOUBLE, MPI_SUM,
+                  comm);
+    return total;
+}
+
+void FieldAccumulator::restore(const std::vector<double>& sums, long long samples, int rank) {
+    if (sums.size() != sums_.size())
+        throw std::logic_error("FieldAccumulator::restore: grid " + grid_.name + " changed");
+    if (rank == 0) sums_ = sums;
+    samples_ = samples;
 }
 
 FieldFrame FieldAccumulator::take(MPI_Comm comm) {

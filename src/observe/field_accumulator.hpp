@@ -38,6 +38,11 @@ public:
     /// with fewer than two samples get NaN temperature and zero flow.
     FieldFrame take(MPI_Comm comm);
 
+    /// The interval so far, summed over all ranks (for checkpoints). Collective.
+    std::vector<double> global_sums(MPI_Comm comm) const;
+    /// Continues an interval from global sums: rank 0 takes them, the others start empty.
+    void restore(const std::vector<double>& sums, long long samples, int rank);
+
 private:
     FieldGrid grid_;
     long long samples_ = 0;
