@@ -2,10 +2,12 @@
 // Migration of owned particles between domains.
 #include "migration.hpp"
 
+#include <limits>
 #include <sstream>
 
 #include "emergent/error.hpp"
 #include "field_packing.hpp"
+#include "reductions.hpp"
 
 namespace emergent::decomp {
 
@@ -13,14 +15,27 @@ namespace {
 constexpr int kCountTag = 7201;
 constexpr int kDataTag = 7202;
 
-[[noreturn]] void lost(const ParticleStore& store, std::size_t i, int d, const char* why) {
+/// Describes a particle that broke the migration rules (the first one seen is reported).
+std::string describe(const ParticleStore& store, std::size_t i, int d, const char* why) {
     std::ostringstream msg;
     msg << "particle id " << store.id[i] << " at (" << store.position[i].x << ", "
         << store.position[i].y << ", " << store.position[i].z << ") " << why << " along "
         << "xyz"[d];
-    throw RuntimeFault(msg.str(), EMERGENT_HERE);
+    return msg.str();
 }
 }  // namespace
+
+void Migration::report(const ParticleStore& store, std::size_t i, int d, const char* why) {
+    if (fault_.empty()) fault_ = describe(store, i, d, why);
+}
+
+void Migration::agree_on_faults(MPI_Comm comm) {
+    // Every rank finished the same exchanges; now all learn of the first rank's fault at once,
+    // so the run stops together instead of one rank aborting the others.
+    const std::string message = first_message(comm, fault_);
+    fault_.clear();
+    if (!message.empty()) throw InstabilityError(message);
+}
 
 void Migration::apply(ParticleStore& store, const RankGrid& grid) {
     store.resize_ghosts(0);
@@ -37,7 +52,11 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
                 keep_.push_back(static_cast<std::uint32_t>(i));
                 continue;
             }
-            if (grid.neighbour(d, side) == MPI_PROC_NULL) lost(store, i, d, "left the region");
+            if (grid.neighbour(d, side) == MPI_PROC_NULL) {
+                report(store, i, d, "left the region through a closed boundary");
+                keep_.push_back(static_cast<std::uint32_t>(i));
+                continue;
+            }
             if (grid.wraps(d, side)) {
                 x[d] += side == 0 ? len[d] : -len[d];
                 store.image[i][d] += side == 0 ? -1 : 1;
@@ -50,7 +69,7 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
             for (int side = 0; side < 2; ++side)
                 for (int i : leaving_[side]) {
                     if (store.position[i][d] < lo[d] || store.position[i][d] >= hi[d])
-                        lost(store, i, d, "moved more than a box length between list builds");
+                        report(store, i, d, "moved more than a box length between list builds");
                 }
             continue;
         }
@@ -76,9 +95,10 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
             unpack_fields(store, kAllFields, recv_buffer_.data(), n_recv, first);
             for (std::size_t i = first; i < store.n_owned(); ++i)
                 if (store.position[i][d] < lo[d] || store.position[i][d] >= hi[d])
-                    lost(store, i, d, "moved more than one domain between list builds");
+                    report(store, i, d, "moved more than one domain between list builds");
         }
     }
+    agree_on_faults(grid.comm());
 }
 
 }  // namespace emergent::decomp

@@ -2,6 +2,7 @@
 // Hands owned particles that left the local domain to the ranks that now own them.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "emergent/particle_store.hpp"
@@ -13,13 +14,18 @@ namespace emergent::decomp {
 /// that crossed an edge or corner arrives in two or three hops. A particle crossing a periodic
 /// boundary is wrapped back into the box and its image count updated. Ghosts are dropped.
 ///
-/// Throws RuntimeFault when a particle went further than the next domain (the state is broken:
-/// the neighbour list missed pairs) or left the box through a non-periodic face.
+/// When a particle went further than the next domain (the state is broken: the neighbour list
+/// missed pairs) or left the box through a non-periodic face, every rank completes the exchange
+/// and then all throw the same InstabilityError naming the first such particle.
 class Migration {
 public:
     void apply(ParticleStore& store, const RankGrid& grid);
 
 private:
+    void report(const ParticleStore& store, std::size_t i, int d, const char* why);
+    void agree_on_faults(MPI_Comm comm);
+
+    std::string fault_;
     std::vector<int> leaving_[2];
     std::vector<char> send_buffer_[2], recv_buffer_;
     std::vector<std::uint32_t> keep_;

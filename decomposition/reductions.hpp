@@ -4,6 +4,9 @@
 
 #include <mpi.h>
 
+#include <limits>
+#include <string>
+
 namespace emergent::decomp {
 
 inline double sum(MPI_Comm comm, double local) {
@@ -28,5 +31,19 @@ inline double max(MPI_Comm comm, double local) {
     return global;
 }
 
-}  // namespace emergent::decomp
+/// The message of the lowest rank whose `local` is non-empty, on every rank; empty if none.
+/// Lets a fault seen by one rank stop all ranks together, with one clear message.
+inline std::string first_message(MPI_Comm comm, const std::string& local) {
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    int first = local.empty() ? std::numeric_limits<int>::max() : rank;
+    MPI_Allreduce(MPI_IN_PLACE, &first, 1, MPI_INT, MPI_MIN, comm);
+    if (first == std::numeric_limits<int>::max()) return {};
+    int length = static_cast<int>(local.size());
+    MPI_Bcast(&length, 1, MPI_INT, first, comm);
+    std::string message = rank == first ? local : std::string(length, ' ');
+    MPI_Bcast(message.data(), length, MPI_CHAR, first, comm);
+    return message;
+}
 
+}  // namespace emergent::decomp

@@ -22,6 +22,20 @@ struct RunSettings {
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
 };
 
+/// Bounds of the run-time guards; 0 switches a bound off.
+struct GuardLimits {
+    double max_force = 0;  ///< largest |f| on any particle (overlaps show up here first)
+};
+
+/// Everything needed to continue from one step: this rank's owned particles and the positions
+/// the neighbour list was built from.
+struct StateSnapshot {
+    ParticleStore owned;
+    std::vector<Vec3> reference;
+    long long step = 0, rebuilds = 0;
+    double time = 0;
+};
+
 /// Global thermodynamic state at one step; energies are per particle.
 struct ThermoSample {
     long long step = 0;
@@ -74,7 +88,16 @@ public:
     /// with sample = true (or to initialise()).
     ThermoSample measure() const;
 
+    // --- guards ---
+    /// Checks that every position, velocity and force is finite and within `limits`; throws
+    /// InstabilityError on every rank, naming the first offending particle. Collective.
+    void check_guards(const GuardLimits& limits) const;
+
     // --- checkpoints ---
+    /// A copy of the current state (owned particles only; cheap next to a step).
+    StateSnapshot snapshot() const;
+    /// Returns to a snapshot taken earlier on the same ranks.
+    void restore(const StateSnapshot& snapshot);
     /// Owned positions at the last neighbour-list build, in the order of particles().
     const std::vector<Vec3>& list_reference_positions() const;
     /// Rank whose domain holds x (after set_box).
@@ -101,6 +124,7 @@ public:
     long long rebuilds() const;
     double degrees_of_freedom() const;
     const std::vector<double>& species_masses() const;
+    bool has_thermostat() const;
     const PhaseTimes& phase_times() const;
     void reset_phase_times();
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "emergent/problem.hpp"
+#include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
 
 namespace emergent::problems {
@@ -36,7 +37,17 @@ public:
         const Vec3 basis[4] = {{0.25, 0.25, 0.25}, {0.75, 0.75, 0.25}, {0.75, 0.25, 0.75},
                                {0.25, 0.75, 0.75}};
         std::int64_t id = 0;
-        for (int z = 0; z < cells; ++z)
+        const bool random = config_.text("lattice") == "random";
+        if (random) {
+            // Uniform random positions (overlaps included): a stress test of the guards.
+            const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
+            const Vec3 len = sim.box().length();
+            for (; id < 4LL * cells * cells * cells; ++id)
+                sim.add_particle({len.x * uniform_open(seed, id, 10), len.y * uniform_open(seed, id, 11),
+                                  len.z * uniform_open(seed, id, 12)},
+                                 {0, 0, 0}, 0, id);
+        }
+        for (int z = 0; z < cells && !random; ++z)
             for (int y = 0; y < cells; ++y)
                 for (int x = 0; x < cells; ++x)
                     for (const Vec3& b : basis)
@@ -61,6 +72,8 @@ ProblemInfo lj_fluid_info() {
         .choice("thermostat", "bussi", {"none", "bussi"},
                 "none: NVE; bussi: canonical velocity rescaling (Bussi et al. 2007)")
         .real("thermostat_tau", 0.5, 0, 1e9, "tau", "thermostat relaxation time", true)
+        .choice("lattice", "fcc", {"fcc", "random"},
+                "initial positions: fcc lattice, or uniform random (overlapping; for stress tests)")
         .real("cutoff", 1.122462048309373, 0, 10, "sigma",
               "pair cutoff (energy-shifted); 2^(1/6) is WCA", true);
     info.presets["tiny"] = {{"n_cells", "4"}, {"equilibration_steps", "200"}, {"steps", "200"},

@@ -16,6 +16,7 @@
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
+#include "app/run_guard.hpp"
 #include "observe/block_average.hpp"
 
 namespace emergent::app {
@@ -70,10 +71,20 @@ std::string json_number(double v) {
     return buf;
 }
 
-long long peak_rss_bytes() {
+long long peak_rss_bytes_of_rank() {
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     return static_cast<long long>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+/// Returns the run to its last good state and saves it as DIR/last_good.h5; says where.
+std::string save_last_good(Simulation& sim, const StateSnapshot& good, const Config& cfg,
+                           std::vector<ThermoSample> series, const std::string& dir) {
+    const std::string at = "last good state at step " + std::to_string(good.step);
+    if (dir.empty()) return at + " (run with -o DIR to keep it as a checkpoint)";
+    sim.restore(good);
+    while (!series.empty() && series.back().step > good.step) series.pop_back();
+    io::write_checkpoint(dir + "/last_good.h5", sim, cfg, series, {});
+    return at + " saved in " + dir + "/last_good.h5";
 }
 }  // namespace
 
@@ -131,26 +142,36 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     ProgressLine progress(cfg.real("progress_interval"), end, rank == 0);
     auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
     if (sim.step_index() == n_eq && series.empty()) series.push_back(sim.measure());
+    RunGuard guard(cfg, sim);
     sim.reset_phase_times();
     const long long timed_from = std::max(sim.step_index(), n_eq);
     Clock::time_point t0 = Clock::now();
-    while (sim.step_index() < end) {
-        if (sim.step_index() == n_eq) {  // the measured phase starts: time it alone
-            sim.reset_phase_times();
-            t0 = Clock::now();
+    try {
+        while (sim.step_index() < end) {
+            if (sim.step_index() == n_eq) {  // the measured phase starts: time it alone
+                sim.reset_phase_times();
+                t0 = Clock::now();
+            }
+            const long long s = sim.step_index() + 1;
+            const bool checkpoint = checkpoint_every > 0 && s % checkpoint_every == 0;
+            sim.step(sample_due(s));
+            guard.after_step(sim, checkpoint);  // a checkpoint is only written from a good state
+            output.on_step(sim);
+            if (sample_due(s)) {
+                const ThermoSample t = sim.measure();
+                guard.on_sample(sim, t);
+                output.on_sample(t);
+                if (s >= n_eq) series.push_back(t);
+                progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "");
+            }
+            if (checkpoint)
+                io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series,
+                                     output.fields());
         }
-        const long long s = sim.step_index() + 1;
-        sim.step(sample_due(s));
-        output.on_step(sim);
-        if (sample_due(s)) {
-            const ThermoSample t = sim.measure();
-            output.on_sample(t);
-            if (s >= n_eq) series.push_back(t);
-            progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "");
-        }
-        if (checkpoint_every > 0 && s % checkpoint_every == 0)
-            io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series,
-                                 output.fields());
+    } catch (const InstabilityError& e) {
+        throw InstabilityError(std::string(e.what()) + "; " +
+                               save_last_good(sim, guard.last_good(), cfg, series,
+                                              req.output_dir));
     }
     const double wall = decomp::max(comm, seconds_since(t0));
     output.finish(sim);
@@ -164,7 +185,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     if (series.empty()) series.push_back(sim.measure());
     const long long timed_steps = end - timed_from;
     const PhaseTimes& p = sim.phase_times();
-    const long long rss = decomp::sum(comm, peak_rss_bytes());
+    const long long rss = decomp::sum(comm, peak_rss_bytes_of_rank());
     const double n = static_cast<double>(sim.n_global());
     const Int3 dims = sim.rank_grid_dims();
     std::ostringstream json;

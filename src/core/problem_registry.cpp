@@ -49,6 +49,12 @@ Schema run_schema() {
         .integer("fields.sample_every", 10, 1, 1e9, "steps", "steps between field samples")
         .text("fields.grid", "1x1x10",
               "NXxNYxNZ cells of the box-wide Cartesian field grid (scenes may add their own)")
+        .integer("guard.every", 100, 0, 1e12, "steps",
+                 "steps between state checks (finite values, force bound); 0: only at checkpoints")
+        .real("guard.max_force", 1e5, 0, 1e300, "epsilon/sigma",
+              "stop when a particle's force exceeds this (0: no bound)")
+        .real("guard.max_energy_drift", 0.1, 0, 1e300, "epsilon",
+              "NVE only: stop when total energy per particle drifts further (0: no bound)")
         .integer("output.every", 0, 0, 1e12, "steps",
                  "steps between particle frames in trajectory.h5 (0: first and last frame only)")
         .text("output.elements", "position,velocity,species,id,image",

@@ -220,6 +220,51 @@ void Simulation::initialise() {
     e.compute_forces(true);
 }
 
+void Simulation::check_guards(const GuardLimits& limits) const {
+    const ParticleStore& s = engine_->store;
+    std::string problem;
+    const double f2max = limits.max_force * limits.max_force;
+    for (std::size_t i = 0; i < s.n_owned() && problem.empty(); ++i) {
+        const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
+        const double sum = x.x + x.y + x.z + v.x + v.y + v.z + f.x + f.y + f.z;
+        std::ostringstream msg;
+        if (!std::isfinite(sum)) {
+            msg << "particle id " << s.id[i] << " has a non-finite position, velocity or force";
+        } else if (f2max > 0 && dot(f, f) > f2max) {
+            msg << "force " << std::sqrt(dot(f, f)) << " on particle id " << s.id[i]
+                << " exceeds guard.max_force=" << limits.max_force
+                << " (overlapping particles or a time step too large)";
+        } else {
+            continue;
+        }
+        problem = msg.str() + " at step " + std::to_string(engine_->step);
+    }
+    const std::string message = decomp::first_message(engine_->comm, problem);
+    if (!message.empty()) throw InstabilityError(message);
+}
+
+StateSnapshot Simulation::snapshot() const {
+    const Engine& e = *engine_;
+    StateSnapshot snap;
+    for (std::size_t i = 0; i < e.store.n_owned(); ++i) {
+        snap.owned.add_owned(e.store.position[i], e.store.velocity[i], e.store.species[i],
+                             e.store.id[i]);
+        snap.owned.image[i] = e.store.image[i];
+    }
+    snap.reference = e.list.reference_positions();
+    snap.step = e.step;
+    snap.time = e.time;
+    snap.rebuilds = e.rebuilds;
+    return snap;
+}
+
+void Simulation::restore(const StateSnapshot& snapshot) {
+    ParticleStore copy = snapshot.owned;
+    std::vector<Vec3> reference = snapshot.reference;
+    restore(std::move(copy), std::move(reference), snapshot.step, snapshot.time,
+            snapshot.rebuilds);
+}
+
 const std::vector<Vec3>& Simulation::list_reference_positions() const {
     return engine_->list.reference_positions();
 }
@@ -303,6 +348,7 @@ double Simulation::dt() const { return engine_->settings.dt; }
 long long Simulation::rebuilds() const { return engine_->rebuilds; }
 double Simulation::degrees_of_freedom() const { return engine_->dof(); }
 const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }
+bool Simulation::has_thermostat() const { return engine_->thermostat != nullptr; }
 const PhaseTimes& Simulation::phase_times() const { return engine_->times; }
 void Simulation::reset_phase_times() { engine_->times = PhaseTimes{}; }
 

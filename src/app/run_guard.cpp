@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// Run-time guards.
+#include "app/run_guard.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "emergent/error.hpp"
+
+namespace emergent::app {
+
+RunGuard::RunGuard(const Config& config, const Simulation& sim) {
+    limits_.max_force = config.real("guard.max_force");
+    every_ = config.integer("guard.every");
+    max_drift_ = sim.has_thermostat() ? 0.0 : config.real("guard.max_energy_drift");
+    // A bad start has no good state to fall back to: report it as it is.
+    sim.check_guards(limits_);
+    last_good_ = sim.snapshot();
+}
+
+void RunGuard::after_step(const Simulation& sim, bool now) {
+    if (!now && (every_ <= 0 || sim.step_index() % every_ != 0)) return;
+    sim.check_guards(limits_);
+    last_good_ = sim.snapshot();
+}
+
+void RunGuard::on_sample(const Simulation& sim, const ThermoSample& t) {
+    if (max_drift_ <= 0) return;
+    if (!have_reference_) {
+        reference_energy_ = t.total;
+        have_reference_ = true;
+        return;
+    }
+    // Written so that a NaN energy fails too.
+    if (!(std::abs(t.total - reference_energy_) <= max_drift_)) {
+        std::ostringstream msg;
+        msg << "total energy per particle drifted from " << reference_energy_ << " to " << t.total
+            << " by step " << sim.step_index() << ", beyond guard.max_energy_drift=" << max_drift_
+            << " (NVE run: time step too large for this state?)";
+        throw InstabilityError(msg.str());
+    }
+}
+
+}  // namespace emergent::app
