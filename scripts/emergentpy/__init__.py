@@ -53,7 +53,8 @@ class Run:
         with self._trajectory() as f:
             b = f["particles/all/box"]
             offset = b["offset"][:] if "offset" in b else np.zeros(3)
-            return offset, offset + b["edges"][:]
+            edges = b["edges/value"][-1].diagonal() if isinstance(b["edges"], h5py.Group) else b["edges"][:]
+            return offset, offset + edges
 
     def unwrapped_positions(self, index=-1):
         """Positions plus image counts times the box edges."""

@@ -224,20 +224,21 @@ void Simulation::check_guards(const GuardLimits& limits) const {
     const ParticleStore& s = engine_->store;
     std::string problem;
     const double f2max = limits.max_force * limits.max_force;
-    for (std::size_t i = 0; i < s.n_owned() && problem.empty(); ++i) {
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
         const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
+        // One sum is non-finite if any term is: a single test per particle on the fast path.
         const double sum = x.x + x.y + x.z + v.x + v.y + v.z + f.x + f.y + f.z;
+        const bool finite = std::isfinite(sum);
+        if (finite && !(f2max > 0 && dot(f, f) > f2max)) continue;
         std::ostringstream msg;
-        if (!std::isfinite(sum)) {
+        if (!finite)
             msg << "particle id " << s.id[i] << " has a non-finite position, velocity or force";
-        } else if (f2max > 0 && dot(f, f) > f2max) {
+        else
             msg << "force " << std::sqrt(dot(f, f)) << " on particle id " << s.id[i]
                 << " exceeds guard.max_force=" << limits.max_force
                 << " (overlapping particles or a time step too large)";
-        } else {
-            continue;
-        }
         problem = msg.str() + " at step " + std::to_string(engine_->step);
+        break;
     }
     const std::string message = decomp::first_message(engine_->comm, problem);
     if (!message.empty()) throw InstabilityError(message);
@@ -246,11 +247,14 @@ void Simulation::check_guards(const GuardLimits& limits) const {
 StateSnapshot Simulation::snapshot() const {
     const Engine& e = *engine_;
     StateSnapshot snap;
-    for (std::size_t i = 0; i < e.store.n_owned(); ++i) {
-        snap.owned.add_owned(e.store.position[i], e.store.velocity[i], e.store.species[i],
-                             e.store.id[i]);
-        snap.owned.image[i] = e.store.image[i];
-    }
+    const std::size_t n = e.store.n_owned();
+    snap.owned.resize_owned(n);
+    // Bulk copies of the owned part of each field (ghosts are rebuilt on restore).
+    snap.owned.position.assign(e.store.position.begin(), e.store.position.begin() + n);
+    snap.owned.velocity.assign(e.store.velocity.begin(), e.store.velocity.begin() + n);
+    snap.owned.species.assign(e.store.species.begin(), e.store.species.begin() + n);
+    snap.owned.id.assign(e.store.id.begin(), e.store.id.begin() + n);
+    snap.owned.image.assign(e.store.image.begin(), e.store.image.begin() + n);
     snap.reference = e.list.reference_positions();
     snap.step = e.step;
     snap.time = e.time;

@@ -48,9 +48,10 @@ H5mdWriter::H5mdWriter(const std::string& path, MPI_Comm comm, const H5mdMetadat
         std::vector<std::string> boundary;
         for (int d = 0; d < 3; ++d) boundary.push_back(meta.box.periodic[d] ? "periodic" : "none");
         write_attribute(box, "boundary", boundary);
-        const Vec3 len = meta.box.length();
-        const double edges[3] = {len.x, len.y, len.z};
-        write_small_dataset(box, "edges", H5T_NATIVE_DOUBLE, {3}, edges, comm);
+        // Edges as a time-dependent element of 3x3 box vectors (the rectangular case of the
+        // triclinic form): valid H5MD, and what MDAnalysis's H5MD reader expects.
+        series_["box/edges"] = std::make_unique<TimeSeries>(box, "edges", H5T_NATIVE_DOUBLE,
+                                                            std::vector<hsize_t>{3, 3});
         // Where the box starts (H5MD assumes the origin; our boxes may start elsewhere).
         const double lower[3] = {meta.box.lo.x, meta.box.lo.y, meta.box.lo.z};
         write_small_dataset(box, "offset", H5T_NATIVE_DOUBLE, {3}, lower, comm);
@@ -85,6 +86,11 @@ void H5mdWriter::write_particles(ParticleStore& store, long long step, double ti
         series_.at("p/" + name)->append(step, time, rows.data(), order.first(), order.count(),
                                         comm_);
     };
+    const Vec3 len = meta_.box.length();
+    const double edges[9] = {len.x, 0, 0, 0, len.y, 0, 0, 0, len.z};
+    int rank = 0;
+    MPI_Comm_rank(comm_, &rank);
+    series_.at("box/edges")->append(step, time, edges, 0, rank == 0 ? 3 : 0, comm_);
     for (const std::string& e : meta_.elements) {
         if (e == "position") write(e, store.position.data(), sizeof(Vec3));
         if (e == "velocity") write(e, store.velocity.data(), sizeof(Vec3));
