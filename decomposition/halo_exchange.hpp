@@ -26,12 +26,16 @@ public:
     void build(ParticleStore& store, const RankGrid& grid, double width, unsigned fields);
 
     /// Refreshes ghost positions from their owners along the plan of the last build.
-    void gather_positions(ParticleStore& store);
+    void gather_positions(ParticleStore& store) { gather(store.position, true); }
+    /// Refreshes ghost velocities (unshifted: no boundary moves) along the same plan.
+    void gather_velocities(ParticleStore& store) { gather(store.velocity, false); }
 
     /// Number of ghosts imported by the last build.
     std::size_t n_ghost() const { return n_ghost_; }
 
 private:
+    void gather(std::vector<Vec3>& field, bool shift);
+
     struct Swap {
         int send_rank = 0, recv_rank = 0;
         bool to_self = false;

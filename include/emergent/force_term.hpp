@@ -5,11 +5,21 @@
 #include <memory>
 #include <string>
 
+#include <vector>
+
+#include "emergent/box.hpp"
 #include "emergent/particle_store.hpp"
 
 namespace emergent {
 
 class NeighbourList;
+
+/// What a force term may need besides the particles: species masses, the box, the time.
+struct ForceContext {
+    const std::vector<double>* mass = nullptr;  ///< per species
+    Box box;
+    double time = 0;
+};
 
 /// Potential energy and virial accumulated by force terms on sampling steps.
 struct ForceSums {
@@ -28,12 +38,42 @@ public:
     /// Fields ghost particles must carry for this term.
     virtual unsigned ghost_fields() const { return kPosition; }
     /// Adds the term's forces to store.force; when `sample`, also its energy and virial.
-    virtual void add_forces(ParticleStore& store, const NeighbourList& list, bool sample,
-                            ForceSums& sums) const = 0;
+    virtual void add_forces(ParticleStore& store, const NeighbourList& list,
+                            const ForceContext& context, bool sample, ForceSums& sums) const = 0;
 };
 
 /// Lennard-Jones 4 eps [(sigma/r)^12 - (sigma/r)^6], truncated at `cutoff` and shifted to zero
 /// there; cutoff = 2^(1/6) sigma gives the purely repulsive WCA potential.
 std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, double cutoff);
+
+/// Contact law of one pair of species (paper eqs. 2, 7, 8): overlap repulsion
+/// u = (k_n / 2)(r_c - r)^2, normal damping f_d = -gamma_n (n.v) n, and sliding friction
+/// f_s = -min(gamma_s |v_t|, mu |f_l + f_d|) v_t / |v_t|.
+struct GranularPair {
+    double k_n = 1000, gamma_n = 0, gamma_s = 0, mu = 0;
+};
+
+/// Granular contacts between spheres of per-particle diameter: r_c = range_factor (d_i + d_j)/2
+/// (range_factor 2^(1/6) gives the paper's convention). `pairs` holds n_species^2 entries
+/// (row-major, symmetric). `max_diameter` bounds every diameter (it sets the list cutoff).
+/// `generic` forces the kernel with every feature compiled in (for benchmarks).
+struct GranularSettings {
+    int n_species = 1;
+    std::vector<GranularPair> pairs{GranularPair{}};
+    double range_factor = 1.0;
+    double max_diameter = 1.0;
+    bool generic = false;
+};
+std::unique_ptr<ForceTerm> make_granular_contacts(const GranularSettings& settings);
+
+/// A uniform acceleration field (gravity): f = m g on every particle; u = -m g.x.
+std::unique_ptr<ForceTerm> make_uniform_field(const Vec3& acceleration);
+
+/// A flat wall normal to `axis` at `position`; particles live on the side `side` (+1: above,
+/// -1: below) and touch it with the contact law `contact` at r_c = range_factor d_i / 2.
+/// The wall moves with velocity `wall_velocity` (it enters the damping and friction only).
+std::unique_ptr<ForceTerm> make_plane_wall(int axis, double position, int side,
+                                           const GranularPair& contact, double range_factor = 1.0,
+                                           const Vec3& wall_velocity = {0, 0, 0});
 
 }  // namespace emergent

@@ -19,6 +19,7 @@ enum FieldMask : unsigned {
     kSpecies = 1u << 3,
     kId = 1u << 4,
     kImage = 1u << 5,
+    kDiameter = 1u << 6,
     kAllFields = ~0u,
 };
 
@@ -44,13 +45,15 @@ public:
     std::vector<int> species;          ///< index into the species tables
     std::vector<std::int64_t> id;      ///< global, unique, stable over the run
     std::vector<Int3> image;           ///< periodic box crossings since the start
+    std::vector<Real> diameter;        ///< contact diameter (granular models; 1 otherwise)
 
     std::size_t n_owned() const { return n_owned_; }
     std::size_t n_ghost() const { return position.size() - n_owned_; }
     std::size_t size() const { return position.size(); }
 
     /// Appends one owned particle (drops any ghosts first).
-    void add_owned(const Vec3& x, const Vec3& v, int species_index, std::int64_t global_id);
+    void add_owned(const Vec3& x, const Vec3& v, int species_index, std::int64_t global_id,
+                   Real particle_diameter = 1.0);
 
     /// Keeps the first n owned particles and drops all ghosts.
     void resize_owned(std::size_t n);
@@ -70,6 +73,7 @@ public:
         visit(FieldSpan{kSpecies, sizeof(int), species.data()});
         visit(FieldSpan{kId, sizeof(std::int64_t), id.data()});
         visit(FieldSpan{kImage, sizeof(Int3), image.data()});
+        visit(FieldSpan{kDiameter, sizeof(Real), diameter.data()});
     }
 
 private:

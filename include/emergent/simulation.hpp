@@ -73,7 +73,8 @@ public:
     void add_force(std::unique_ptr<ForceTerm> term);
     void set_thermostat(std::unique_ptr<Thermostat> thermostat);
     /// Keeps the particle if x lies in this rank's domain.
-    void add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id);
+    void add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id,
+                      double diameter = 1.0);
     /// Sets velocities from a Maxwell distribution at temperature T (same for any rank
     /// count), with zero total momentum and the kinetic energy of exactly T.
     void assign_thermal_velocities(double temperature, std::uint64_t seed);

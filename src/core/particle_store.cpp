@@ -13,10 +13,11 @@ void ParticleStore::resize_all(std::size_t n) {
     species.resize(n);
     id.resize(n);
     image.resize(n);
+    diameter.resize(n);
 }
 
 void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
-                              std::int64_t global_id) {
+                              std::int64_t global_id, Real particle_diameter) {
     resize_all(n_owned_);
     position.push_back(x);
     velocity.push_back(v);
@@ -24,6 +25,7 @@ void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
     species.push_back(species_index);
     id.push_back(global_id);
     image.push_back({0, 0, 0});
+    diameter.push_back(particle_diameter);
     ++n_owned_;
 }
 

@@ -91,7 +91,8 @@ struct Simulation::Engine {
         PhaseTimer timer(times.force);
         std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
         sums = ForceSums{};
-        for (const auto& term : forces) term->add_forces(store, list, sample, sums);
+        const ForceContext context{&mass, box, time};
+        for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
     }
 
     void kick_drift() {
@@ -175,7 +176,8 @@ void Simulation::set_thermostat(std::unique_ptr<Thermostat> thermostat) {
     engine_->thermostat = std::move(thermostat);
 }
 
-void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id) {
+void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id,
+                              double diameter) {
     Engine& e = *engine_;
     e.require_grid("add_particle");
     const Vec3 lo = e.grid->lo(), hi = e.grid->hi();
@@ -183,7 +185,8 @@ void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::in
         if (x[d] < lo[d] || x[d] >= hi[d]) return;
     if (species < 0 || species >= static_cast<int>(e.mass.size()))
         throw InputError("particle species " + std::to_string(species) + " has no mass set");
-    e.store.add_owned(x, v, species, id);
+    if (!(diameter > 0)) throw InputError("particle diameter " + std::to_string(diameter) + " must be > 0");
+    e.store.add_owned(x, v, species, id, diameter);
 }
 
 void Simulation::assign_thermal_velocities(double temperature, std::uint64_t seed) {
@@ -255,6 +258,7 @@ StateSnapshot Simulation::snapshot() const {
     snap.owned.species.assign(e.store.species.begin(), e.store.species.begin() + n);
     snap.owned.id.assign(e.store.id.begin(), e.store.id.begin() + n);
     snap.owned.image.assign(e.store.image.begin(), e.store.image.begin() + n);
+    snap.owned.diameter.assign(e.store.diameter.begin(), e.store.diameter.begin() + n);
     snap.reference = e.list.reference_positions();
     snap.step = e.step;
     snap.time = e.time;
@@ -294,6 +298,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     e.rebuild();
     for (std::size_t i = 0; i < s.n_owned(); ++i) std::swap(s.position[i], s.force[i]);
     e.halo.gather_positions(s);
+    if (e.ghost_fields & kVelocity) e.halo.gather_velocities(s);
     e.step = step;
     e.time = time;
     e.rebuilds = rebuilds;
@@ -307,7 +312,11 @@ void Simulation::step(bool sample) {
     {
         PhaseTimer timer(e.times.communicate);
         rebuild = e.list.needs_rebuild(e.store, e.comm);
-        if (!rebuild) e.halo.gather_positions(e.store);
+        if (!rebuild) {
+            e.halo.gather_positions(e.store);
+            // Contact forces with damping or friction need their partners' velocities.
+            if (e.ghost_fields & kVelocity) e.halo.gather_velocities(e.store);
+        }
     }
     if (rebuild) e.rebuild();
     e.compute_forces(sample);

@@ -17,8 +17,8 @@ public:
     std::string name() const override { return "lennard-jones"; }
     double cutoff() const override { return params_.cutoff; }
 
-    void add_forces(ParticleStore& store, const NeighbourList& list, bool sample,
-                    ForceSums& sums) const override {
+    void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext&,
+                    bool sample, ForceSums& sums) const override {
         // The one place where the run-time flag becomes a compile-time feature.
         if (sample)
             force::pair_forces_half_list<force::PairFeatures<true>>(store, list, eval_, sums);

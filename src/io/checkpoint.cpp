@@ -75,6 +75,7 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         put("velocity", H5T_NATIVE_DOUBLE, 3, s.velocity.data(), sizeof(Vec3));
         put("image", H5T_NATIVE_INT, 3, s.image.data(), sizeof(Int3));
         put("species", H5T_NATIVE_INT, 0, s.species.data(), sizeof(int));
+        put("diameter", H5T_NATIVE_DOUBLE, 0, s.diameter.data(), sizeof(Real));
         put("reference_position", H5T_NATIVE_DOUBLE, 3, sim.list_reference_positions().data(),
             sizeof(Vec3));
     }
@@ -165,6 +166,7 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
     std::vector<Vec3> x(count), v(count), ref(count);
     std::vector<Int3> image(count);
     std::vector<int> species(count);
+    std::vector<Real> diameter(count);
     std::vector<std::int64_t> id(count);
     {
         H5Id file = open_file(path, comm, false);
@@ -174,6 +176,7 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
         read_rows(root, "reference_position", H5T_NATIVE_DOUBLE, 3, ref.data(), first, count);
         read_rows(root, "image", H5T_NATIVE_INT, 3, image.data(), first, count);
         read_rows(root, "species", H5T_NATIVE_INT, 0, species.data(), first, count);
+        read_rows(root, "diameter", H5T_NATIVE_DOUBLE, 0, diameter.data(), first, count);
     }
     for (std::size_t k = 0; k < count; ++k) id[k] = first + static_cast<long long>(k);
     // Each particle goes to the rank whose domain held it when the list was last built.
@@ -183,10 +186,11 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
     const auto mx = plan.apply(x), mv = plan.apply(v), mref = plan.apply(ref);
     const auto mimage = plan.apply(image);
     const auto mspecies = plan.apply(species);
+    const auto mdiameter = plan.apply(diameter);
     const auto mid = plan.apply(id);
     ParticleStore owned;
     for (std::size_t k = 0; k < plan.n_import(); ++k) {
-        owned.add_owned(mx[k], mv[k], mspecies[k], mid[k]);
+        owned.add_owned(mx[k], mv[k], mspecies[k], mid[k], mdiameter[k]);
         owned.image[k] = mimage[k];
     }
     sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,

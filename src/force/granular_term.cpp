@@ -1,0 +1,197 @@
+// SPDX-License-Identifier: MIT
+// Granular contacts between spheres.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "emergent/error.hpp"
+#include "force/dispatch.hpp"
+#include "force/granular_contact.hpp"
+#include "neighbour/neighbour_list.hpp"
+
+namespace emergent {
+
+namespace {
+
+/// Half-list loop over contacts; one instantiation per feature combination.
+template <class F>
+void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSettings& g,
+                  ForceSums& sums) {
+    const std::size_t n_owned = list.n_owned();
+    const Vec3 *x = s.position.data(), *v = s.velocity.data();
+    const Real* d = s.diameter.data();
+    const int* sp = s.species.data();
+    Vec3* f = s.force.data();
+    const std::uint32_t *offset = list.offsets(), *nb = list.neighbours();
+    const GranularPair* table = g.pairs.data();
+    const int n_species = g.n_species;
+    const Real half_range = 0.5 * g.range_factor;
+    double potential = 0, virial = 0;
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        const Vec3 xi = x[i], vi = v[i];
+        const Real di = d[i];
+        Vec3 fi{0, 0, 0};
+        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+            const std::uint32_t j = nb[k];
+            const Vec3 r = xi - x[j];
+            const Real r2 = dot(r, r), rc = half_range * (di + d[j]);
+            if (r2 >= rc * rc) continue;
+            const Real dist = std::sqrt(r2);
+            const GranularPair& p =
+                F::species_table ? table[sp[i] * n_species + sp[j]] : table[0];
+            const Vec3 fij = force::contact_force<F::damping, F::friction>(
+                (1 / dist) * r, rc - dist, vi - v[j], p);
+            fi += fij;
+            f[j] -= fij;
+            if constexpr (F::sample) {
+                const Real w = j < n_owned ? 1.0 : 0.5;
+                potential += w * 0.5 * p.k_n * (rc - dist) * (rc - dist);
+                virial += w * dot(r, fij);
+            }
+        }
+        f[i] += fi;
+    }
+    sums.potential += potential;
+    sums.virial += virial;
+}
+
+/// Runs the contact loop instantiated for the features chosen by dispatch_bools.
+struct ContactLoop {
+    ParticleStore& store;
+    const NeighbourList& list;
+    const GranularSettings& settings;
+    ForceSums& sums;
+    template <bool Sample, bool Damping, bool Friction, bool Table>
+    void operator()() const {
+        contact_loop<force::ContactFeatures<Sample, Damping, Friction, Table>>(store, list,
+                                                                                settings, sums);
+    }
+};
+
+/// Wall contacts for the features chosen by dispatch_bools.
+struct WallLoop {
+    ParticleStore& s;
+    std::size_t n_owned;
+    int axis, side;
+    double position, range;
+    const GranularPair& p;
+    const Vec3& velocity;
+    bool sample;
+    ForceSums& sums;
+    template <bool Damping, bool Friction>
+    void operator()() const {
+        Vec3 n{0, 0, 0};
+        n[axis] = side;
+        for (std::size_t i = 0; i < n_owned; ++i) {
+            const Real h = side * (s.position[i][axis] - position);
+            const Real rc = 0.5 * range * s.diameter[i];
+            if (h >= rc) continue;
+            s.force[i] += force::contact_force<Damping, Friction>(n, rc - h, s.velocity[i] - velocity, p);
+            if (sample) sums.potential += 0.5 * p.k_n * (rc - h) * (rc - h);
+        }
+    }
+};
+
+class GranularContacts final : public ForceTerm {
+public:
+    explicit GranularContacts(const GranularSettings& g) : g_(g) {
+        for (const auto& p : g.pairs) {
+            damping_ = damping_ || p.gamma_n != 0;
+            friction_ = friction_ || (p.gamma_s != 0 && p.mu != 0);
+        }
+    }
+    std::string name() const override { return "granular-contacts"; }
+    double cutoff() const override { return g_.range_factor * g_.max_diameter; }
+    unsigned ghost_fields() const override {
+        const bool velocities = damping_ || friction_ || g_.generic;
+        return kPosition | kSpecies | kDiameter | (velocities ? unsigned(kVelocity) : 0u);
+    }
+    void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext&,
+                    bool sample, ForceSums& sums) const override {
+        const bool all = g_.generic;
+        force::dispatch_bools(ContactLoop{store, list, g_, sums}, sample, damping_ || all,
+                              friction_ || all, g_.n_species > 1 || all);
+    }
+
+private:
+    GranularSettings g_;
+    bool damping_ = false, friction_ = false;
+};
+
+class UniformField final : public ForceTerm {
+public:
+    explicit UniformField(const Vec3& g) : g_(g) {}
+    std::string name() const override { return "uniform-field"; }
+    double cutoff() const override { return 0; }
+    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
+                    bool sample, ForceSums& sums) const override {
+        const std::vector<double>& mass = *c.mass;
+        for (std::size_t i = 0; i < list.n_owned(); ++i) {
+            const double m = mass[s.species[i]];
+            s.force[i] += m * g_;
+            if (sample) sums.potential -= m * dot(g_, s.position[i]);
+        }
+    }
+
+private:
+    Vec3 g_;
+};
+
+class PlaneWall final : public ForceTerm {
+public:
+    PlaneWall(int axis, double position, int side, const GranularPair& p, double range,
+              const Vec3& velocity)
+        : axis_(axis), position_(position), side_(side), p_(p), range_(range), velocity_(velocity) {}
+    std::string name() const override { return "plane-wall"; }
+    double cutoff() const override { return 0; }
+    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext&, bool sample,
+                    ForceSums& sums) const override {
+        const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
+        force::dispatch_bools(WallLoop{s, list.n_owned(), axis_, side_, position_, range_, p_,
+                                       velocity_, sample, sums},
+                              damping, friction);
+    }
+
+private:
+    int axis_;
+    double position_;
+    int side_;
+    GranularPair p_;
+    double range_;
+    Vec3 velocity_;
+};
+
+void check_pair(const GranularPair& p, const std::string& what) {
+    if (!(p.k_n > 0) || p.gamma_n < 0 || p.gamma_s < 0 || p.mu < 0) {
+        std::ostringstream msg;
+        msg << what << ": k_n=" << p.k_n << " must be > 0 and gamma_n=" << p.gamma_n
+            << ", gamma_s=" << p.gamma_s << ", mu=" << p.mu << " >= 0";
+        throw InputError(msg.str());
+    }
+}
+
+}  // namespace
+
+std::unique_ptr<ForceTerm> make_granular_contacts(const GranularSettings& g) {
+    if (g.n_species < 1 || g.pairs.size() != static_cast<std::size_t>(g.n_species * g.n_species))
+        throw InputError("granular contacts: need n_species^2 pair entries");
+    for (const auto& p : g.pairs) check_pair(p, "granular contacts");
+    if (!(g.range_factor > 0) || !(g.max_diameter > 0))
+        throw InputError("granular contacts: range_factor and max_diameter must be > 0");
+    return std::make_unique<GranularContacts>(g);
+}
+
+std::unique_ptr<ForceTerm> make_uniform_field(const Vec3& acceleration) {
+    return std::make_unique<UniformField>(acceleration);
+}
+
+std::unique_ptr<ForceTerm> make_plane_wall(int axis, double position, int side,
+                                           const GranularPair& contact, double range_factor,
+                                           const Vec3& wall_velocity) {
+    if (axis < 0 || axis > 2 || (side != 1 && side != -1))
+        throw InputError("plane wall: axis must be 0..2 and side +1 or -1");
+    check_pair(contact, "plane wall");
+    return std::make_unique<PlaneWall>(axis, position, side, contact, range_factor, wall_velocity);
+}
+
+}  // namespace emergent
