@@ -35,6 +35,9 @@ public:
     virtual std::string name() const = 0;
     /// Largest pair distance the term needs listed (0 for terms without pairs).
     virtual double cutoff() const = 0;
+    /// False when the term dissipates or injects energy (damping, friction, moving walls): the
+    /// total energy is then not conserved and the drift guard does not apply.
+    virtual bool conservative() const { return true; }
     /// Fields ghost particles must carry for this term.
     virtual unsigned ghost_fields() const { return kPosition; }
     /// Adds the term's forces to store.force; when `sample`, also its energy and virial.

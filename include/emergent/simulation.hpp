@@ -126,6 +126,8 @@ public:
     double degrees_of_freedom() const;
     const std::vector<double>& species_masses() const;
     bool has_thermostat() const;
+    /// True when total energy should be conserved: no thermostat, every force term conservative.
+    bool conserves_energy() const;
     const PhaseTimes& phase_times() const;
     void reset_phase_times();
 

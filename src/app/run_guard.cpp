@@ -12,7 +12,7 @@ namespace emergent::app {
 RunGuard::RunGuard(const Config& config, const Simulation& sim) {
     limits_.max_force = config.real("guard.max_force");
     every_ = config.integer("guard.every");
-    max_drift_ = sim.has_thermostat() ? 0.0 : config.real("guard.max_energy_drift");
+    max_drift_ = sim.conserves_energy() ? config.real("guard.max_energy_drift") : 0.0;
     // A bad start has no good state to fall back to: report it as it is.
     sim.check_guards(limits_);
     last_good_ = sim.snapshot();

@@ -54,7 +54,8 @@ Schema run_schema() {
         .real("guard.max_force", 1e5, 0, 1e300, "epsilon/sigma",
               "stop when a particle's force exceeds this (0: no bound)")
         .real("guard.max_energy_drift", 0.1, 0, 1e300, "epsilon",
-              "NVE only: stop when total energy per particle drifts further (0: no bound)")
+              "energy-conserving runs only (no thermostat, damping or friction): stop when total "
+              "energy per particle drifts further (0: no bound)")
         .integer("output.every", 0, 0, 1e12, "steps",
                  "steps between particle frames in trajectory.h5 (0: first and last frame only)")
         .text("output.elements", "position,velocity,species,id,image",

@@ -362,6 +362,12 @@ long long Simulation::rebuilds() const { return engine_->rebuilds; }
 double Simulation::degrees_of_freedom() const { return engine_->dof(); }
 const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }
 bool Simulation::has_thermostat() const { return engine_->thermostat != nullptr; }
+bool Simulation::conserves_energy() const {
+    if (engine_->thermostat) return false;
+    for (const auto& term : engine_->forces)
+        if (!term->conservative()) return false;
+    return true;
+}
 const PhaseTimes& Simulation::phase_times() const { return engine_->times; }
 void Simulation::reset_phase_times() { engine_->times = PhaseTimes{}; }
 

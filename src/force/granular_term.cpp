@@ -101,6 +101,7 @@ public:
         }
     }
     std::string name() const override { return "granular-contacts"; }
+    bool conservative() const override { return !damping_ && !friction_; }
     double cutoff() const override { return g_.range_factor * g_.max_diameter; }
     unsigned ghost_fields() const override {
         const bool velocities = damping_ || friction_ || g_.generic;
@@ -143,6 +144,9 @@ public:
               const Vec3& velocity)
         : axis_(axis), position_(position), side_(side), p_(p), range_(range), velocity_(velocity) {}
     std::string name() const override { return "plane-wall"; }
+    bool conservative() const override {
+        return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && dot(velocity_, velocity_) == 0;
+    }
     double cutoff() const override { return 0; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext&, bool sample,
                     ForceSums& sums) const override {
