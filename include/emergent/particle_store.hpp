@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "emergent/quaternion.hpp"
 #include "emergent/vec3.hpp"
 
 namespace emergent {
@@ -20,6 +21,10 @@ enum FieldMask : unsigned {
     kId = 1u << 4,
     kImage = 1u << 5,
     kDiameter = 1u << 6,
+    kBody = 1u << 7,         ///< rigid fields, present only after enable_rigid_fields()
+    kOrientation = 1u << 8,
+    kAngularMomentum = 1u << 9,
+    kTorque = 1u << 10,
     kAllFields = ~0u,
 };
 
@@ -46,6 +51,17 @@ public:
     std::vector<std::int64_t> id;      ///< global, unique, stable over the run
     std::vector<Int3> image;           ///< periodic box crossings since the start
     std::vector<Real> diameter;        ///< contact diameter (granular models; 1 otherwise)
+    // Rigid fields (empty unless enable_rigid_fields()): for a constituent sphere, the id of
+    // its body (-1 for free particles); for a body store (position = centre of mass), the
+    // orientation, the conjugate momentum of NO_SQUISH and the torque.
+    std::vector<std::int64_t> body;
+    std::vector<Quat> orientation;
+    std::vector<Quat> angular_momentum;
+    std::vector<Vec3> torque;
+
+    /// Gives every particle the rigid fields from now on (costs memory only where used).
+    void enable_rigid_fields();
+    bool has_rigid_fields() const { return rigid_; }
 
     std::size_t n_owned() const { return n_owned_; }
     std::size_t n_ghost() const { return position.size() - n_owned_; }
@@ -74,12 +90,18 @@ public:
         visit(FieldSpan{kId, sizeof(std::int64_t), id.data()});
         visit(FieldSpan{kImage, sizeof(Int3), image.data()});
         visit(FieldSpan{kDiameter, sizeof(Real), diameter.data()});
+        if (!rigid_) return;
+        visit(FieldSpan{kBody, sizeof(std::int64_t), body.data()});
+        visit(FieldSpan{kOrientation, sizeof(Quat), orientation.data()});
+        visit(FieldSpan{kAngularMomentum, sizeof(Quat), angular_momentum.data()});
+        visit(FieldSpan{kTorque, sizeof(Vec3), torque.data()});
     }
 
 private:
     void resize_all(std::size_t n);
 
     std::size_t n_owned_ = 0;
+    bool rigid_ = false;
     std::vector<unsigned char> scratch_;
 };
 

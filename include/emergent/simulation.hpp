@@ -44,6 +44,7 @@ struct ThermoSample {
     double kinetic = 0, potential = 0, total = 0;
     double temperature = 0, pressure = 0;
     Vec3 momentum{0, 0, 0};
+    Vec3 angular_momentum{0, 0, 0};  ///< about the origin, from unwrapped positions
 };
 
 /// Wall-clock seconds spent in each part of the step (this rank).
@@ -75,6 +76,17 @@ public:
     /// Keeps the particle if x lies in this rank's domain.
     void add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id,
                       double diameter = 1.0);
+    /// Declares a kind of rigid body: spheres of the given species and diameters at the given
+    /// positions (any frame; mass, centre and principal axes follow from the spheres). Called
+    /// identically on every rank; returns the kind's index.
+    int add_body_kind(const std::vector<Vec3>& positions, const std::vector<int>& species,
+                      const std::vector<double>& diameters);
+    /// Adds a rigid body if its centre of mass lies in this rank's domain. `orientation`
+    /// rotates the kind's principal frame into space; `omega` is the angular velocity (space
+    /// frame). Its spheres get particle ids first_particle_id, first_particle_id + 1, ...
+    void add_body(int kind, const Vec3& com, const Quat& orientation, const Vec3& velocity,
+                  const Vec3& omega, std::int64_t id, std::int64_t first_particle_id);
+    bool has_bodies() const;
     /// Sets velocities from a Maxwell distribution at temperature T (same for any rank
     /// count), with zero total momentum and the kinetic energy of exactly T.
     void assign_thermal_velocities(double temperature, std::uint64_t seed);

@@ -14,6 +14,17 @@ void ParticleStore::resize_all(std::size_t n) {
     id.resize(n);
     image.resize(n);
     diameter.resize(n);
+    if (rigid_) {
+        body.resize(n, -1);
+        orientation.resize(n);
+        angular_momentum.resize(n, Quat{0, 0, 0, 0});
+        torque.resize(n, Vec3{0, 0, 0});
+    }
+}
+
+void ParticleStore::enable_rigid_fields() {
+    rigid_ = true;
+    resize_all(position.size());
 }
 
 void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
@@ -26,6 +37,12 @@ void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
     id.push_back(global_id);
     image.push_back({0, 0, 0});
     diameter.push_back(particle_diameter);
+    if (rigid_) {
+        body.push_back(-1);
+        orientation.push_back(Quat{});
+        angular_momentum.push_back(Quat{0, 0, 0, 0});
+        torque.push_back({0, 0, 0});
+    }
     ++n_owned_;
 }
 

@@ -17,6 +17,7 @@
 #include "integrate/velocity_verlet.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
+#include "rigid/rigid_bodies.hpp"
 
 namespace emergent {
 
@@ -54,8 +55,11 @@ struct Simulation::Engine {
     double time = 0;
     PhaseTimes times;
     std::vector<std::uint32_t> order;
+    rigid::RigidBodies rigid;
 
-    double ghost_width() const { return list.list_cutoff(); }
+    bool bodies() const { return !rigid.empty_everywhere(); }
+    /// Constituents of a body owned here may stick out of the domain by the body's extent.
+    double ghost_width() const { return list.list_cutoff() + rigid.max_extent(); }
 
     /// Sets up the list and cells for the force terms present, and counts particles.
     void prepare() {
@@ -64,20 +68,29 @@ struct Simulation::Engine {
         for (const auto& term : forces) cutoff = std::max(cutoff, term->cutoff());
         list = NeighbourList(cutoff, settings.skin);
         grid->require_width(ghost_width());
-        cells.setup(grid->lo(), grid->hi(), ghost_width(), ghost_width());
+        cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff());
+        if (bodies() && thermostat)
+            throw InputError("a thermostat with rigid bodies is not supported yet");
         n_global = decomp::sum(comm, static_cast<long long>(store.n_owned()));
     }
 
     /// Re-partitions particles and rebuilds ghosts, cells and the Verlet list.
     void rebuild() {
         PhaseTimer timer(times.neighbour);
+        if (bodies()) rigid.drop_constituents(store);
         migration.apply(store, *grid);
+        if (bodies()) {
+            // Bodies move whole, by their centre of mass; their spheres follow.
+            rigid.migrate(*grid);
+            rigid.append_constituents(store);
+        }
         // Cell order gives the force loop neighbours that sit close in memory.
         cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
         store.permute_owned(order);
         halo.build(store, *grid, ghost_width(), ghost_fields);
         cells.bin(store.position.data(), store.size());
-        list.build(store, cells);
+        list.build(store, cells, bodies());
+        if (bodies()) rigid.index_constituents(store);
         ++rebuilds;
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
         if (n != n_global) {
@@ -93,6 +106,7 @@ struct Simulation::Engine {
         sums = ForceSums{};
         const ForceContext context{&mass, box, time};
         for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
+        if (bodies()) rigid.sum_forces(store);
     }
 
     void kick_drift() {
@@ -101,6 +115,8 @@ struct Simulation::Engine {
                        integrate::KickDrift{store.position.data(), store.velocity.data(),
                                             store.force.data(), store.species.data(),
                                             inverse_mass.data(), settings.dt});
+        // Spheres of bodies were moved as free particles above; the bodies now place them.
+        if (bodies()) rigid.kick_drift(store, settings.dt);
     }
 
     void kick() {
@@ -108,19 +124,33 @@ struct Simulation::Engine {
         exec::for_each(exec::Host{}, store.n_owned(),
                        integrate::Kick{store.velocity.data(), store.force.data(),
                                        store.species.data(), inverse_mass.data(), settings.dt});
+        if (bodies()) rigid.kick(store, settings.dt);
     }
 
+    bool is_free(std::size_t i) const { return !store.has_rigid_fields() || store.body[i] < 0; }
+
+    /// Kinetic energy of free particles and bodies (spheres of bodies count through them).
     double local_kinetic() const {
         double k = 0;
         for (std::size_t i = 0; i < store.n_owned(); ++i)
-            k += 0.5 * mass[store.species[i]] * dot(store.velocity[i], store.velocity[i]);
-        return k;
+            if (is_free(i)) k += 0.5 * mass[store.species[i]] * dot(store.velocity[i], store.velocity[i]);
+        return k + rigid.kinetic();
     }
+
+    long long n_free = 0, n_bodies = 0;
 
     double dof() const {
         const bool periodic = box.periodic[0] && box.periodic[1] && box.periodic[2];
         // In a fully periodic box total momentum is conserved: 3 fewer degrees of freedom.
-        return 3.0 * n_global - (periodic ? 3.0 : 0.0);
+        const double all = bodies() ? 3.0 * n_free + 6.0 * n_bodies : 3.0 * n_global;
+        return all - (periodic ? 3.0 : 0.0);
+    }
+
+    void count_bodies() {
+        long long free_here = 0;
+        for (std::size_t i = 0; i < store.n_owned(); ++i) free_here += is_free(i);
+        n_free = decomp::sum(comm, free_here);
+        n_bodies = decomp::sum(comm, static_cast<long long>(rigid.n_owned()));
     }
 
     void apply_thermostat() {
@@ -219,7 +249,14 @@ void Simulation::assign_thermal_velocities(double temperature, std::uint64_t see
 void Simulation::initialise() {
     Engine& e = *engine_;
     e.prepare();
+    if (e.bodies()) {
+        // The spheres of bodies appear with the first build: count them in beforehand.
+        e.rigid.drop_constituents(e.store);
+        e.rigid.append_constituents(e.store);
+        e.n_global = decomp::sum(e.comm, static_cast<long long>(e.store.n_owned()));
+    }
     e.rebuild();
+    e.count_bodies();
     e.compute_forces(true);
 }
 
@@ -285,6 +322,9 @@ int Simulation::rank_of(const Vec3& x) const {
 void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
                          double time, long long rebuilds) {
     Engine& e = *engine_;
+    if (e.bodies())
+        throw InputError("checkpoints and last-good states of runs with rigid bodies are not "
+                         "supported yet");
     e.store = std::move(owned);
     ParticleStore& s = e.store;
     if (reference.size() != s.n_owned()) throw std::logic_error("restore: size mismatch");
@@ -329,10 +369,19 @@ void Simulation::step(bool sample) {
 ThermoSample Simulation::measure() const {
     const Engine& e = *engine_;
     const ParticleStore& s = e.store;
-    double v[6] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0};
-    for (std::size_t i = 0; i < s.n_owned(); ++i)
-        for (int d = 0; d < 3; ++d) v[3 + d] += e.mass[s.species[i]] * s.velocity[i][d];
-    decomp::sum_in_place(e.comm, v, 6);
+    double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
+    const Vec3 len = e.box.length();
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+        if (!e.is_free(i)) continue;
+        const double m = e.mass[s.species[i]];
+        const Int3 n = s.image[i];
+        const Vec3 x = s.position[i] + Vec3{n.x * len.x, n.y * len.y, n.z * len.z};
+        const Vec3 l = m * cross(x, s.velocity[i]);
+        for (int d = 0; d < 3; ++d) v[3 + d] += m * s.velocity[i][d], v[6 + d] += l[d];
+    }
+    const Vec3 pb = e.rigid.momentum(), lb = e.rigid.angular_momentum(len);
+    for (int d = 0; d < 3; ++d) v[3 + d] += pb[d], v[6 + d] += lb[d];
+    decomp::sum_in_place(e.comm, v, 9);
     ThermoSample t;
     t.step = e.step;
     t.time = e.time;
@@ -344,6 +393,7 @@ ThermoSample Simulation::measure() const {
     t.temperature = 2 * v[0] / e.dof();
     t.pressure = (2 * v[0] + v[2]) / (3 * e.box.volume());
     t.momentum = {v[3], v[4], v[5]};
+    t.angular_momentum = {v[6], v[7], v[8]};
     return t;
 }
 
@@ -362,6 +412,25 @@ long long Simulation::rebuilds() const { return engine_->rebuilds; }
 double Simulation::degrees_of_freedom() const { return engine_->dof(); }
 const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }
 bool Simulation::has_thermostat() const { return engine_->thermostat != nullptr; }
+bool Simulation::has_bodies() const { return engine_->bodies(); }
+
+int Simulation::add_body_kind(const std::vector<Vec3>& positions, const std::vector<int>& species,
+                              const std::vector<double>& diameters) {
+    Engine& e = *engine_;
+    if (!e.store.has_rigid_fields()) e.store.enable_rigid_fields();
+    e.ghost_fields |= kBody;
+    return e.rigid.add_kind({positions, species, diameters}, e.mass);
+}
+
+void Simulation::add_body(int kind, const Vec3& com, const Quat& orientation, const Vec3& velocity,
+                          const Vec3& omega, std::int64_t id, std::int64_t first_particle_id) {
+    Engine& e = *engine_;
+    e.require_grid("add_body");
+    const Vec3 lo = e.grid->lo(), hi = e.grid->hi();
+    for (int d = 0; d < 3; ++d)
+        if (com[d] < lo[d] || com[d] >= hi[d]) return;
+    e.rigid.add(kind, com, orientation, velocity, omega, id, first_particle_id);
+}
 bool Simulation::conserves_energy() const {
     if (engine_->thermostat) return false;
     for (const auto& term : engine_->forces)

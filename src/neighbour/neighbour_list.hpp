@@ -27,7 +27,11 @@ public:
     double list_cutoff() const { return cutoff_ + skin_; }
 
     /// Builds from positions of owned particles and ghosts binned in `cells`.
-    void build(const ParticleStore& store, const CellList& cells);
+    /// `owned_outside_domain`: owned particles may sit outside the domain (constituents of
+    /// rigid bodies whose centre is inside) and ghosts inside it, so the search cannot rely on
+    /// cells being purely owned or purely ghost. With rigid fields, spheres of the same body
+    /// are never listed.
+    void build(const ParticleStore& store, const CellList& cells, bool owned_outside_domain = false);
 
     /// Largest squared displacement of an owned particle since the last build; NaN if any
     /// position is not finite.
@@ -45,6 +49,8 @@ public:
     const std::uint32_t* neighbours() const { return neighbour_.data(); }
 
 private:
+    void build_general(const ParticleStore& store, const CellList& cells);
+
     double cutoff_ = 0, skin_ = 0;
     std::size_t n_pairs_ = 0;
     std::vector<std::uint32_t> offset_, neighbour_;

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// Rigid bodies made of constituent spheres: their state, integration and bookkeeping.
+#pragma once
+
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include "decomposition/migration.hpp"
+#include "emergent/particle_store.hpp"
+#include "rigid/body_frame.hpp"
+
+namespace emergent::rigid {
+
+/// One kind of body: spheres (species, diameter) at positions in any frame.
+struct BodyKind {
+    std::vector<Vec3> positions;
+    std::vector<int> species;
+    std::vector<double> diameters;
+};
+
+/// The rigid bodies a rank owns and their constituent spheres.
+///
+/// A body is owned by the rank whose domain holds its centre of mass; its constituents are
+/// owned particles of the same rank (they may stick out of the domain by the body's extent,
+/// which the ghost shell covers). Constituents are regenerated from the body state at every
+/// neighbour-list build and placed from it at every step, so only bodies migrate. Bodies are
+/// stored in a ParticleStore with rigid fields: position = centre of mass, velocity, force,
+/// id, species = kind, orientation (principal frame -> space), angular_momentum = NO_SQUISH's
+/// conjugate momentum, torque; its `body` field holds the id of the first constituent.
+class RigidBodies {
+public:
+    int add_kind(const BodyKind& kind, const std::vector<double>& species_mass);
+    /// Adds a body (on the caller's rank; the caller checks the domain).
+    void add(int kind, const Vec3& com, const Quat& orientation, const Vec3& velocity,
+             const Vec3& omega_space, std::int64_t id, std::int64_t first_particle_id);
+
+    bool empty_everywhere() const { return kinds_.empty(); }
+    double max_extent() const { return max_extent_; }
+    std::size_t n_owned() const { return bodies_.n_owned(); }
+    const ParticleStore& bodies() const { return bodies_; }
+
+    /// At a list build: drops constituents from `store`, migrates bodies, appends their
+    /// constituents again. Free particles are migrated by the caller before this.
+    void drop_constituents(ParticleStore& store) const;
+    void migrate(const decomp::RankGrid& grid) { migration_.apply(bodies_, grid); }
+    void append_constituents(ParticleStore& store) const;
+    /// After particles were reordered: where each body's constituents are.
+    void index_constituents(const ParticleStore& store);
+
+    /// Velocity-Verlet halves for bodies (NO_SQUISH for rotation), then constituents placed.
+    void kick_drift(ParticleStore& store, double dt);
+    void sum_forces(const ParticleStore& store);
+    void kick(ParticleStore& store, double dt);
+
+    /// Kinetic energy (translation + rotation), momentum, angular momentum about the origin
+    /// (unwrapped centres) of the owned bodies; and their degrees of freedom (6 each).
+    double kinetic() const;
+    Vec3 momentum() const;
+    Vec3 angular_momentum(const Vec3& box_length) const;
+
+private:
+    void place(ParticleStore& store, std::size_t b, bool velocities_only) const;
+    Vec3 omega_space(std::size_t b) const;
+
+    std::vector<BodyKind> kinds_;
+    std::vector<BodyFrame> frames_;
+    std::vector<std::vector<double>> kind_masses_;
+    double max_extent_ = 0;
+    ParticleStore bodies_;
+    decomp::Migration migration_;
+    std::vector<std::uint32_t> first_, index_;  // constituent indices of body b: index_[first_[b]..]
+};
+
+}  // namespace emergent::rigid
