@@ -20,7 +20,8 @@ class Simulation;
 class Problem {
 public:
     virtual ~Problem() = default;
-    /// Sets the box, species, force terms and thermostat of `sim`: everything but particles.
+    /// Sets the box, species, force terms, thermostat and rigid-body kinds of `sim`: everything
+    /// but the particles and bodies themselves (a continued run gets those from a checkpoint).
     virtual void build(Simulation& sim) = 0;
     /// Adds the initial particles (not called when a run continues from a checkpoint).
     virtual void place_particles(Simulation& sim) = 0;

@@ -32,6 +32,7 @@ struct GuardLimits {
 struct StateSnapshot {
     ParticleStore owned;
     std::vector<Vec3> reference;
+    ParticleStore bodies;  ///< rigid bodies owned here (empty without bodies)
     long long step = 0, rebuilds = 0;
     double time = 0;
 };
@@ -87,6 +88,9 @@ public:
     void add_body(int kind, const Vec3& com, const Quat& orientation, const Vec3& velocity,
                   const Vec3& omega, std::int64_t id, std::int64_t first_particle_id);
     bool has_bodies() const;
+    /// This rank's rigid bodies (position = centre of mass, orientation, ...); empty if none.
+    ParticleStore& bodies();
+    long long n_bodies_global() const;
     /// Sets velocities from a Maxwell distribution at temperature T (same for any rank
     /// count), with zero total momentum and the kinetic energy of exactly T.
     void assign_thermal_velocities(double temperature, std::uint64_t seed);
@@ -119,8 +123,11 @@ public:
     /// `reference` their positions at the last list build (each particle must lie, at its
     /// reference position, in this rank's domain). The list is rebuilt exactly as it was built
     /// then, so a run continued on the same rank count retraces the original bit for bit.
+    /// With rigid bodies, `bodies` holds this rank's bodies (by centre of mass); the spheres
+    /// of bodies in `owned` are dropped and placed again from the bodies, so such a
+    /// continuation is exact only up to the list being rebuilt at the restart.
     void restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
-                 double time, long long rebuilds);
+                 double time, long long rebuilds, ParticleStore* bodies = nullptr);
 
     // --- state ---
     ParticleStore& particles();

@@ -28,6 +28,12 @@ public:
         g.generic = c_.text("kernel") == "generic";
         sim.add_force(make_granular_contacts(g));
         sim.add_force(make_uniform_field({0, 0, -c_.real("gravity")}));
+        if (c_.text("particles") == "tetrahedra") {
+            // Four spheres at the corners of a regular tetrahedron of the given arm length.
+            const double a = c_.real("arm") / std::sqrt(3.0), d = c_.real("diameter");
+            tetrahedron_ = sim.add_body_kind({{a, a, a}, {a, -a, -a}, {-a, a, -a}, {-a, -a, a}},
+                                             {0, 0, 0, 0}, {d, d, d, d});
+        }
         // The floor touches with the same law; its damping and friction act on the sphere's
         // whole mass rather than a pair's reduced mass, hence the factor 2 on gamma.
         sim.add_force(make_plane_wall(2, 0.0, +1,
@@ -42,15 +48,23 @@ public:
         std::int64_t id = 0;
         for (long z = 0; z < c_.integer("nz"); ++z)
             for (long y = 0; y < c_.integer("ny"); ++y)
-                for (long x = 0; x < c_.integer("nx"); ++x, ++id)
-                    sim.add_particle({a * (x + 0.5), a * (y + 0.5), a * (z + 0.5)},
-                                     {v * gaussian(seed, id, 0), v * gaussian(seed, id, 1),
-                                      v * gaussian(seed, id, 2)},
-                                     0, id, d);
+                for (long x = 0; x < c_.integer("nx"); ++x, ++id) {
+                    const Vec3 at{a * (x + 0.5), a * (y + 0.5), a * (z + 0.5)};
+                    const Vec3 vel{v * gaussian(seed, id, 0), v * gaussian(seed, id, 1),
+                                   v * gaussian(seed, id, 2)};
+                    if (tetrahedron_ < 0) {
+                        sim.add_particle(at, vel, 0, id, d);
+                        continue;
+                    }
+                    const Quat q = normalized(Quat{gaussian(seed, id, 3), gaussian(seed, id, 4),
+                                                   gaussian(seed, id, 5), gaussian(seed, id, 6)});
+                    sim.add_body(tetrahedron_, at, q, vel, {0, 0, 0}, id, 4 * id);
+                }
     }
 
 private:
     Config c_;
+    int tetrahedron_ = -1;
 };
 
 ProblemInfo granular_bed_info() {
@@ -73,10 +87,16 @@ ProblemInfo granular_bed_info() {
         .real("mu", 0.5, 0, 10, "1", "Coulomb cap of sliding friction")
         .real("gravity", 1.0, 0, 1e6, "sigma/tau^2", "gravitational acceleration (-z)")
         .real("temperature", 0.1, 0, 1e6, "epsilon", "initial velocity spread (m <v^2> / 3)")
+        .choice("particles", "spheres", {"spheres", "tetrahedra"},
+                "single spheres, or rigid tetrahedra of four spheres (arm length `arm`)")
+        .real("arm", 0.6, 0, 100, "sigma", "tetrahedra: distance of each sphere from the centre", true)
         .choice("kernel", "specialised", {"specialised", "generic"},
                 "specialised: unused contact features compiled out; generic: all compiled in");
     info.presets["tiny"] = {{"nx", "6"}, {"ny", "6"}, {"nz", "4"}, {"equilibration_steps", "500"},
                             {"steps", "500"}, {"sample_every", "100"}};
+    info.presets["tiny-tetrahedra"] = {{"nx", "4"}, {"ny", "4"}, {"nz", "3"}, {"spacing", "2.5"},
+                                       {"particles", "tetrahedra"}, {"equilibration_steps", "500"},
+                                       {"steps", "500"}, {"sample_every", "100"}};
     info.factory = [](const Config& c) { return std::make_unique<GranularBed>(c); };
     return info;
 }

@@ -81,7 +81,6 @@ std::string save_last_good(Simulation& sim, const StateSnapshot& good, const Con
                            std::vector<ThermoSample> series, const std::string& dir) {
     const std::string at = "last good state at step " + std::to_string(good.step);
     if (dir.empty()) return at + " (run with -o DIR to keep it as a checkpoint)";
-    if (sim.has_bodies()) return at + " (not saved: runs with rigid bodies cannot be checkpointed yet)";
     sim.restore(good);
     while (!series.empty() && series.back().step > good.step) series.pop_back();
     io::write_checkpoint(dir + "/last_good.h5", sim, cfg, series, {});

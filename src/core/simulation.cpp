@@ -296,6 +296,11 @@ StateSnapshot Simulation::snapshot() const {
     snap.owned.id.assign(e.store.id.begin(), e.store.id.begin() + n);
     snap.owned.image.assign(e.store.image.begin(), e.store.image.begin() + n);
     snap.owned.diameter.assign(e.store.diameter.begin(), e.store.diameter.begin() + n);
+    if (e.store.has_rigid_fields()) {
+        snap.owned.enable_rigid_fields();
+        snap.owned.body.assign(e.store.body.begin(), e.store.body.begin() + n);
+    }
+    if (e.bodies()) snap.bodies = e.rigid.bodies();
     snap.reference = e.list.reference_positions();
     snap.step = e.step;
     snap.time = e.time;
@@ -306,8 +311,9 @@ StateSnapshot Simulation::snapshot() const {
 void Simulation::restore(const StateSnapshot& snapshot) {
     ParticleStore copy = snapshot.owned;
     std::vector<Vec3> reference = snapshot.reference;
+    ParticleStore bodies = snapshot.bodies;
     restore(std::move(copy), std::move(reference), snapshot.step, snapshot.time,
-            snapshot.rebuilds);
+            snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr);
 }
 
 const std::vector<Vec3>& Simulation::list_reference_positions() const {
@@ -320,11 +326,14 @@ int Simulation::rank_of(const Vec3& x) const {
 }
 
 void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
-                         double time, long long rebuilds) {
+                         double time, long long rebuilds, ParticleStore* bodies) {
     Engine& e = *engine_;
-    if (e.bodies())
-        throw InputError("checkpoints and last-good states of runs with rigid bodies are not "
-                         "supported yet");
+    if (e.bodies() != (bodies != nullptr))
+        throw InputError("restore: the saved state and this scene disagree about rigid bodies");
+    if (bodies) {
+        e.rigid.store() = std::move(*bodies);
+        if (!owned.has_rigid_fields()) owned.enable_rigid_fields();
+    }
     e.store = std::move(owned);
     ParticleStore& s = e.store;
     if (reference.size() != s.n_owned()) throw std::logic_error("restore: size mismatch");
@@ -336,12 +345,15 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     }
     e.prepare();
     e.rebuild();
-    for (std::size_t i = 0; i < s.n_owned(); ++i) std::swap(s.position[i], s.force[i]);
+    // Spheres of bodies were placed afresh by the build; free particles get their positions back.
+    for (std::size_t i = 0; i < s.n_owned(); ++i)
+        if (e.is_free(i)) std::swap(s.position[i], s.force[i]);
     e.halo.gather_positions(s);
     if (e.ghost_fields & kVelocity) e.halo.gather_velocities(s);
     e.step = step;
     e.time = time;
     e.rebuilds = rebuilds;
+    e.count_bodies();
     e.compute_forces(true);
 }
 
@@ -413,6 +425,8 @@ double Simulation::degrees_of_freedom() const { return engine_->dof(); }
 const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }
 bool Simulation::has_thermostat() const { return engine_->thermostat != nullptr; }
 bool Simulation::has_bodies() const { return engine_->bodies(); }
+ParticleStore& Simulation::bodies() { return engine_->rigid.store(); }
+long long Simulation::n_bodies_global() const { return engine_->n_bodies; }
 
 int Simulation::add_body_kind(const std::vector<Vec3>& positions, const std::vector<int>& species,
                               const std::vector<double>& diameters) {

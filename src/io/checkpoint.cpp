@@ -78,6 +78,27 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         put("diameter", H5T_NATIVE_DOUBLE, 0, s.diameter.data(), sizeof(Real));
         put("reference_position", H5T_NATIVE_DOUBLE, 3, sim.list_reference_positions().data(),
             sizeof(Vec3));
+        if (sim.has_bodies()) {
+            put("body", H5T_NATIVE_LLONG, 0, s.body.data(), sizeof(std::int64_t));
+            ParticleStore& b = sim.bodies();
+            H5Id group = create_group(root, "bodies");
+            write_attribute(group, "n_global", sim.n_bodies_global());
+            const IdOrder border(comm, b.id.data(), b.n_owned(), sim.n_bodies_global());
+            auto put_body = [&](const char* name, hid_t type, int width, const void* field,
+                                std::size_t bytes) {
+                const std::vector<char> block = border.gather(field, bytes);
+                write_rows(group, name, type, sim.n_bodies_global(), width, block.data(),
+                           border.first(), border.count());
+            };
+            put_body("position", H5T_NATIVE_DOUBLE, 3, b.position.data(), sizeof(Vec3));
+            put_body("velocity", H5T_NATIVE_DOUBLE, 3, b.velocity.data(), sizeof(Vec3));
+            put_body("image", H5T_NATIVE_INT, 3, b.image.data(), sizeof(Int3));
+            put_body("kind", H5T_NATIVE_INT, 0, b.species.data(), sizeof(int));
+            put_body("first_particle", H5T_NATIVE_LLONG, 0, b.body.data(), sizeof(std::int64_t));
+            put_body("orientation", H5T_NATIVE_DOUBLE, 4, b.orientation.data(), sizeof(Quat));
+            put_body("angular_momentum", H5T_NATIVE_DOUBLE, 4, b.angular_momentum.data(),
+                     sizeof(Quat));
+        }
     }
     // Every rank has closed the file; only then does it replace the previous checkpoint.
     MPI_Barrier(comm);
@@ -167,6 +188,9 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
     std::vector<Int3> image(count);
     std::vector<int> species(count);
     std::vector<Real> diameter(count);
+    std::vector<std::int64_t> body(count, -1);
+    ParticleStore bodies;
+    bool with_bodies = false;
     std::vector<std::int64_t> id(count);
     {
         H5Id file = open_file(path, comm, false);
@@ -177,6 +201,47 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
         read_rows(root, "image", H5T_NATIVE_INT, 3, image.data(), first, count);
         read_rows(root, "species", H5T_NATIVE_INT, 0, species.data(), first, count);
         read_rows(root, "diameter", H5T_NATIVE_DOUBLE, 0, diameter.data(), first, count);
+        with_bodies = exists(root, "bodies");
+        if (with_bodies != sim.has_bodies())
+            throw InputError("checkpoint and scene disagree about rigid bodies");
+        if (with_bodies) {
+            read_rows(root, "body", H5T_NATIVE_LLONG, 0, body.data(), first, count);
+            H5Id group = open_group(root, "bodies");
+            const long long nb = read_integer_attribute(group, "n_global");
+            const decomp::IdBlocks bblocks{nb, n_ranks};
+            const long long bfirst = bblocks.first(rank);
+            const auto bcount = static_cast<std::size_t>(bblocks.first(rank + 1) - bfirst);
+            std::vector<Vec3> bx(bcount), bv(bcount);
+            std::vector<Int3> bimage(bcount);
+            std::vector<int> kind(bcount);
+            std::vector<std::int64_t> first_particle(bcount), bid(bcount);
+            std::vector<Quat> q(bcount), p(bcount);
+            read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, bx.data(), bfirst, bcount);
+            read_rows(group, "velocity", H5T_NATIVE_DOUBLE, 3, bv.data(), bfirst, bcount);
+            read_rows(group, "image", H5T_NATIVE_INT, 3, bimage.data(), bfirst, bcount);
+            read_rows(group, "kind", H5T_NATIVE_INT, 0, kind.data(), bfirst, bcount);
+            read_rows(group, "first_particle", H5T_NATIVE_LLONG, 0, first_particle.data(), bfirst, bcount);
+            read_rows(group, "orientation", H5T_NATIVE_DOUBLE, 4, q.data(), bfirst, bcount);
+            read_rows(group, "angular_momentum", H5T_NATIVE_DOUBLE, 4, p.data(), bfirst, bcount);
+            for (std::size_t k = 0; k < bcount; ++k) bid[k] = bfirst + static_cast<long long>(k);
+            // Bodies go to the rank holding their centre of mass.
+            std::vector<int> bdest(bcount);
+            for (std::size_t k = 0; k < bcount; ++k) bdest[k] = sim.rank_of(bx[k]);
+            const decomp::Distributor bplan(comm, bdest);
+            const auto mx = bplan.apply(bx), mv = bplan.apply(bv);
+            const auto mimage = bplan.apply(bimage);
+            const auto mkind = bplan.apply(kind);
+            const auto mfirst = bplan.apply(first_particle), mid = bplan.apply(bid);
+            const auto mq = bplan.apply(q), mp = bplan.apply(p);
+            bodies.enable_rigid_fields();
+            for (std::size_t k = 0; k < bplan.n_import(); ++k) {
+                bodies.add_owned(mx[k], mv[k], mkind[k], mid[k]);
+                bodies.image[k] = mimage[k];
+                bodies.body[k] = mfirst[k];
+                bodies.orientation[k] = mq[k];
+                bodies.angular_momentum[k] = mp[k];
+            }
+        }
     }
     for (std::size_t k = 0; k < count; ++k) id[k] = first + static_cast<long long>(k);
     // Each particle goes to the rank whose domain held it when the list was last built.
@@ -188,13 +253,16 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
     const auto mspecies = plan.apply(species);
     const auto mdiameter = plan.apply(diameter);
     const auto mid = plan.apply(id);
+    const auto mbody = plan.apply(body);
     ParticleStore owned;
+    if (with_bodies) owned.enable_rigid_fields();
     for (std::size_t k = 0; k < plan.n_import(); ++k) {
         owned.add_owned(mx[k], mv[k], mspecies[k], mid[k], mdiameter[k]);
         owned.image[k] = mimage[k];
+        if (with_bodies) owned.body[k] = mbody[k];
     }
     sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,
-                h.rebuilds);
+                h.rebuilds, with_bodies ? &bodies : nullptr);
 }
 
 }  // namespace emergent::io

@@ -41,64 +41,74 @@ H5mdWriter::H5mdWriter(const std::string& path, MPI_Comm comm, const H5mdMetadat
         write_attribute(build_group, "ranks", static_cast<long long>(n_ranks));
     }
     particles_ = create_group(file_, "particles");
-    H5Id all = create_group(particles_, "all");
-    {
-        H5Id box = create_group(all, "box");
-        write_attribute(box, "dimension", 3LL);
-        std::vector<std::string> boundary;
-        for (int d = 0; d < 3; ++d) boundary.push_back(meta.box.periodic[d] ? "periodic" : "none");
-        write_attribute(box, "boundary", boundary);
-        // Edges as a time-dependent element of 3x3 box vectors (the rectangular case of the
-        // triclinic form): valid H5MD, and what MDAnalysis's H5MD reader expects.
-        series_["box/edges"] = std::make_unique<TimeSeries>(box, "edges", H5T_NATIVE_DOUBLE,
-                                                            std::vector<hsize_t>{3, 3});
-        // Where the box starts (H5MD assumes the origin; our boxes may start elsewhere).
-        const double lower[3] = {meta.box.lo.x, meta.box.lo.y, meta.box.lo.z};
-        write_small_dataset(box, "offset", H5T_NATIVE_DOUBLE, {3}, lower, comm);
-    }
-    const auto n = static_cast<hsize_t>(meta.n_global);
-    for (const std::string& e : meta.elements) {
-        if (e == "position" || e == "velocity")
-            series_["p/" + e] = std::make_unique<TimeSeries>(all, e, H5T_NATIVE_DOUBLE,
-                                                             std::vector<hsize_t>{n, 3});
-        else if (e == "image")
-            series_["p/" + e] = std::make_unique<TimeSeries>(all, e, H5T_NATIVE_INT,
-                                                             std::vector<hsize_t>{n, 3});
-        else if (e == "species")
-            series_["p/" + e] = std::make_unique<TimeSeries>(all, e, H5T_NATIVE_INT,
-                                                             std::vector<hsize_t>{n});
-        else if (e == "id")
-            series_["p/" + e] = std::make_unique<TimeSeries>(all, e, H5T_NATIVE_LLONG,
-                                                             std::vector<hsize_t>{n});
-        else
-            throw InputError("output.elements: unknown element '" + e +
-                             "' (known: position, velocity, species, id, image)");
-    }
+    add_group("all", "p/", meta.n_global, meta.elements);
+    if (meta.n_bodies > 0)
+        add_group("bodies", "b/", meta.n_bodies,
+                  {"position", "velocity", "orientation", "image", "species", "id"});
     observables_ = create_group(file_, "observables");
 }
 
-H5mdWriter::~H5mdWriter() = default;
+void H5mdWriter::add_group(const std::string& name, const std::string& key, long long n_global,
+                           const std::vector<std::string>& elements) {
+    H5Id group = create_group(particles_, name);
+    {
+        H5Id box = create_group(group, "box");
+        write_attribute(box, "dimension", 3LL);
+        std::vector<std::string> boundary;
+        for (int d = 0; d < 3; ++d) boundary.push_back(meta_.box.periodic[d] ? "periodic" : "none");
+        write_attribute(box, "boundary", boundary);
+        // Edges as a time-dependent element of 3x3 box vectors (the rectangular case of the
+        // triclinic form): valid H5MD, and what MDAnalysis's H5MD reader expects.
+        series_[key + "box/edges"] = std::make_unique<TimeSeries>(box, "edges", H5T_NATIVE_DOUBLE,
+                                                                  std::vector<hsize_t>{3, 3});
+        // Where the box starts (H5MD assumes the origin; our boxes may start elsewhere).
+        const double lower[3] = {meta_.box.lo.x, meta_.box.lo.y, meta_.box.lo.z};
+        write_small_dataset(box, "offset", H5T_NATIVE_DOUBLE, {3}, lower, comm_);
+    }
+    const auto n = static_cast<hsize_t>(n_global);
+    for (const std::string& e : elements) {
+        hid_t type = H5T_NATIVE_DOUBLE;
+        std::vector<hsize_t> frame{n, 3};
+        if (e == "orientation") frame = {n, 4};  // unit quaternion, scalar first (w, x, y, z)
+        if (e == "image") type = H5T_NATIVE_INT;
+        if (e == "species") type = H5T_NATIVE_INT, frame = {n};
+        if (e == "id") type = H5T_NATIVE_LLONG, frame = {n};
+        series_[key + e] = std::make_unique<TimeSeries>(group, e, type, frame);
+    }
+}
 
-void H5mdWriter::write_particles(ParticleStore& store, long long step, double time) {
-    const IdOrder order(comm_, store.id.data(), store.n_owned(), meta_.n_global);
+void H5mdWriter::write_group(const std::string& key, ParticleStore& store, long long n_global,
+                             const std::vector<std::string>& elements, long long step, double time) {
+    const IdOrder order(comm_, store.id.data(), store.n_owned(), n_global);
     auto write = [&](const std::string& name, const void* field, std::size_t bytes) {
         const std::vector<char> rows = order.gather(field, bytes);
-        series_.at("p/" + name)->append(step, time, rows.data(), order.first(), order.count(),
-                                        comm_);
+        series_.at(key + name)->append(step, time, rows.data(), order.first(), order.count(), comm_);
     };
     const Vec3 len = meta_.box.length();
     const double edges[9] = {len.x, 0, 0, 0, len.y, 0, 0, 0, len.z};
     int rank = 0;
     MPI_Comm_rank(comm_, &rank);
-    series_.at("box/edges")->append(step, time, edges, 0, rank == 0 ? 3 : 0, comm_);
-    for (const std::string& e : meta_.elements) {
+    series_.at(key + "box/edges")->append(step, time, edges, 0, rank == 0 ? 3 : 0, comm_);
+    for (const std::string& e : elements) {
         if (e == "position") write(e, store.position.data(), sizeof(Vec3));
         if (e == "velocity") write(e, store.velocity.data(), sizeof(Vec3));
+        if (e == "orientation") write(e, store.orientation.data(), sizeof(Quat));
         if (e == "species") write(e, store.species.data(), sizeof(int));
         if (e == "id") write(e, store.id.data(), sizeof(std::int64_t));
         if (e == "image") write(e, store.image.data(), sizeof(Int3));
     }
+}
+
+H5mdWriter::~H5mdWriter() = default;
+
+void H5mdWriter::write_particles(ParticleStore& store, long long step, double time) {
+    write_group("p/", store, meta_.n_global, meta_.elements, step, time);
     H5Fflush(file_, H5F_SCOPE_GLOBAL);
+}
+
+void H5mdWriter::write_bodies(ParticleStore& bodies, long long step, double time) {
+    write_group("b/", bodies, meta_.n_bodies,
+                {"position", "velocity", "orientation", "image", "species", "id"}, step, time);
 }
 
 void H5mdWriter::write_observable(const std::string& name, long long step, double time,

@@ -21,6 +21,7 @@ struct H5mdMetadata {
     const Config* config = nullptr;
     Box box;
     long long n_global = 0;
+    long long n_bodies = 0;  ///< rigid bodies: written as /particles/bodies (with orientation)
     std::vector<std::string> elements;  ///< of: position, velocity, species, id, image
 };
 
@@ -36,6 +37,9 @@ public:
     /// Appends one frame of every configured element. Collective.
     void write_particles(ParticleStore& store, long long step, double time);
 
+    /// Appends one frame of the rigid bodies (centre of mass, velocity, orientation, ...).
+    void write_bodies(ParticleStore& bodies, long long step, double time);
+
     /// Appends one value (scalar if size 1, else a vector) to /observables/<name>. Collective:
     /// every rank calls it with the same arguments; rank 0 writes.
     void write_observable(const std::string& name, long long step, double time,
@@ -47,6 +51,11 @@ public:
     static const std::vector<std::string>& known_elements();
 
 private:
+    void add_group(const std::string& name, const std::string& key, long long n_global,
+                   const std::vector<std::string>& elements);
+    void write_group(const std::string& key, ParticleStore& store, long long n_global,
+                     const std::vector<std::string>& elements, long long step, double time);
+
     MPI_Comm comm_;
     H5mdMetadata meta_;
     H5Id file_, particles_, observables_;

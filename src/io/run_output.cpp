@@ -57,6 +57,7 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
     meta.config = &config;
     meta.box = sim.box();
     meta.n_global = sim.n_global();
+    meta.n_bodies = sim.has_bodies() ? sim.n_bodies_global() : 0;
     meta.elements = elements;
     trajectory_ =
         std::make_unique<H5mdWriter>(dir + "/trajectory" + suffix + ".h5", sim.comm(), meta);
@@ -93,6 +94,7 @@ void RunOutput::on_step(Simulation& sim) {
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
     trajectory_->write_particles(sim.particles(), step, sim.time());
+    if (sim.has_bodies()) trajectory_->write_bodies(sim.bodies(), step, sim.time());
     last_frame_ = step;
 }
 
@@ -105,8 +107,10 @@ void RunOutput::restore_fields(const CheckpointHeader& checkpoint, int rank) {
 
 void RunOutput::finish(Simulation& sim) {
     if (!trajectory_) return;
-    if (sim.step_index() != last_frame_)
+    if (sim.step_index() != last_frame_) {
         trajectory_->write_particles(sim.particles(), sim.step_index(), sim.time());
+        if (sim.has_bodies()) trajectory_->write_bodies(sim.bodies(), sim.step_index(), sim.time());
+    }
     trajectory_->finish();
     trajectory_.reset();
 }

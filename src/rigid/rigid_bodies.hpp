@@ -39,6 +39,7 @@ public:
     double max_extent() const { return max_extent_; }
     std::size_t n_owned() const { return bodies_.n_owned(); }
     const ParticleStore& bodies() const { return bodies_; }
+    ParticleStore& store() { return bodies_; }
 
     /// At a list build: drops constituents from `store`, migrates bodies, appends their
     /// constituents again. Free particles are migrated by the caller before this.
