@@ -20,7 +20,10 @@ public:
         Box box;
         box.hi = {a * c_.integer("nx"), a * c_.integer("ny"), c_.real("height")};
         box.periodic[2] = false;
-        sim.set_box(box);
+        // The bed fills the bottom of the box: split it across x and y only, so every rank
+        // gets a column of the bed rather than some ranks the empty space above it.
+        const bool split[3] = {true, true, false};
+        sim.set_box(box, split);
         sim.set_species_masses({c_.real("mass")});
         GranularSettings g;
         g.pairs = {GranularPair{c_.real("k_n"), c_.real("gamma_n"), c_.real("gamma_s"), c_.real("mu")}};

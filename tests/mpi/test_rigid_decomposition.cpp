@@ -48,7 +48,11 @@ std::unique_ptr<Simulation> cluster(MPI_Comm comm) {
                 const Vec3 c{12 + 2.6 * (x - 1), 12 + 2.6 * (y - 1), 12 + 2.6 * (z - 1)};
                 const Quat q = normalized(Quat{gaussian(4, id, 0), gaussian(4, id, 1),
                                                gaussian(4, id, 2), gaussian(4, id, 3)});
-                const Vec3 v{2 * gaussian(4, id, 4), 2 * gaussian(4, id, 5), 2 * gaussian(4, id, 6)};
+                // Thermal motion plus a common drift of (4, 3, 2): within the run every body
+                // crosses the domain boundaries at 12 (and the cluster stays clear of the
+                // periodic boundary, so no interaction crosses it and L stays an invariant).
+                const Vec3 v = Vec3{4, 3, 2} + 2 * Vec3{gaussian(4, id, 4), gaussian(4, id, 5),
+                                                        gaussian(4, id, 6)};
                 const Vec3 w{gaussian(4, id, 7), gaussian(4, id, 8), gaussian(4, id, 9)};
                 sim->add_body(id % 3 == 0 ? big : small, c, q, v, w, id, 4 * id);
             }
@@ -79,11 +83,13 @@ double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
 
 TEST(RigidDecomposition, MomentumAndAngularMomentumConservedAndSameAsOneRank) {
     const Trace d = run(MPI_COMM_WORLD);
-    // Scales: |p| of one body ~ 8, |L| of the cluster about the origin ~ 27 * 8 * 12 ~ 3e3.
-    EXPECT_LT(norm(d.last.momentum - d.first.momentum), 1e-10);
-    EXPECT_LT(norm(d.last.angular_momentum - d.first.angular_momentum), 1e-9);
-    // Collisions happened (damping removed energy), or nothing was tested.
-    EXPECT_LT(d.kinetic.back(), 0.98 * d.first.kinetic);
+    // Scales: |p| of the cluster ~ 27 * 8 * 5 ~ 1e3, |L| about the origin ~ 1e3 * 12 ~ 1e4.
+    EXPECT_LT(norm(d.last.momentum - d.first.momentum), 1e-9);
+    EXPECT_LT(norm(d.last.angular_momentum - d.first.angular_momentum), 1e-8);
+    // Collisions happened (damping removed energy), or nothing was tested: the thermal part
+    // of the kinetic energy is ~9 (the drift's ~13 is untouched by internal forces); without
+    // collisions the loss would be exactly zero.
+    EXPECT_GT(d.first.kinetic - d.kinetic.back(), 0.05);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
     if (rank != 0) return;
