@@ -2,7 +2,6 @@
 // The run loop of a scene and its summary.
 #include "app/run.hpp"
 
-#include <sys/resource.h>
 
 #include <chrono>
 #include <cinttypes>
@@ -17,7 +16,7 @@
 #include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
 #include "app/run_guard.hpp"
-#include "observe/block_average.hpp"
+#include "app/run_summary.hpp"
 
 namespace emergent::app {
 
@@ -52,30 +51,8 @@ private:
     Clock::time_point start_, last_;
 };
 
-/// Least-squares slope of total energy per particle against time.
-double drift_rate(const std::vector<ThermoSample>& s) {
-    if (s.size() < 2) return 0;
-    double mt = 0, me = 0;
-    for (const auto& x : s) mt += x.time, me += x.total;
-    mt /= s.size();
-    me /= s.size();
-    double num = 0, den = 0;
-    for (const auto& x : s) num += (x.time - mt) * (x.total - me), den += (x.time - mt) * (x.time - mt);
-    return den > 0 ? num / den : 0;
-}
 
-std::string json_number(double v) {
-    if (!std::isfinite(v)) return "null";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.12g", v);
-    return buf;
-}
 
-long long peak_rss_bytes_of_rank() {
-    rusage usage{};
-    getrusage(RUSAGE_SELF, &usage);
-    return static_cast<long long>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
-}
 /// Returns the run to its last good state and saves it as DIR/last_good.h5; says where.
 std::string save_last_good(Simulation& sim, const StateSnapshot& good, const Config& cfg,
                            std::vector<ThermoSample> series, const std::string& dir) {
@@ -99,52 +76,42 @@ Int3 parse_grid(const std::string& scene, const std::string& text) {
     return g;
 }
 
-std::string run_problem(const RunRequest& req, MPI_Comm comm) {
-    const Config& cfg = req.config;
+namespace {
+
+RunSettings run_settings(const Config& cfg) {
     RunSettings settings;
     settings.dt = cfg.real("dt");
     settings.skin = cfg.real("skin");
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
-    const long long checkpoint_every = cfg.integer("checkpoint_every");
-    if (checkpoint_every > 0 && req.output_dir.empty())
-        throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
+    return settings;
+}
+
+void prepare_output_dir(const std::string& dir, MPI_Comm comm) {
+    if (dir.empty()) return;
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
-    if (!req.output_dir.empty()) {
-        std::error_code ec;
-        if (rank == 0) std::filesystem::create_directories(req.output_dir, ec);
-        int failed = ec ? 1 : 0;
-        MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-        if (failed) throw InputError("cannot create output directory '" + req.output_dir + "'");
-    }
+    std::error_code ec;
+    if (rank == 0) std::filesystem::create_directories(dir, ec);
+    int failed = ec ? 1 : 0;
+    MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+    if (failed) throw InputError("cannot create output directory '" + dir + "'");
+}
 
-    Simulation sim(comm, settings);
-    auto problem = req.problem->factory(cfg);
-    problem->build(sim);
-    std::vector<ThermoSample> series;  // samples of the measured phase
-    if (req.restart) {
-        io::restore_checkpoint(req.restart_file, sim, *req.restart);
-        series = req.restart->series;
-    } else {
-        problem->place_particles(sim);
-        sim.initialise();
-    }
-    io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim));
-    if (req.restart) output.restore_fields(*req.restart, rank);
-    output.on_step(sim);
-
-    // Steps are counted globally (0 .. n_eq + n_steps), so a continued run takes the same
-    // sampling, output and checkpoint decisions as an uninterrupted one.
+/// Steps from wherever the simulation is to the end of the run. Steps are counted globally
+/// (0 .. n_eq + n_steps), so a continued run takes the same sampling, output and checkpoint
+/// decisions as an uninterrupted one. Returns the wall time of the measured phase.
+double advance(Simulation& sim, const RunRequest& req, io::RunOutput& output,
+               std::vector<ThermoSample>& series) {
+    const Config& cfg = req.config;
     const long long n_eq = cfg.integer("equilibration_steps");
-    const long long n_steps = cfg.integer("steps");
-    const long long end = n_eq + n_steps;
+    const long long end = n_eq + cfg.integer("steps");
     const long long every = cfg.integer("sample_every");
-    ProgressLine progress(cfg.real("progress_interval"), end, rank == 0);
+    const long long checkpoint_every = cfg.integer("checkpoint_every");
+    ProgressLine progress(cfg.real("progress_interval"), end, sim.rank() == 0);
     auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
     if (sim.step_index() == n_eq && series.empty()) series.push_back(sim.measure());
     RunGuard guard(cfg, sim);
     sim.reset_phase_times();
-    const long long timed_from = std::max(sim.step_index(), n_eq);
     Clock::time_point t0 = Clock::now();
     try {
         while (sim.step_index() < end) {
@@ -173,72 +140,47 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
                                save_last_good(sim, guard.last_good(), cfg, series,
                                               req.output_dir));
     }
-    const double wall = decomp::max(comm, seconds_since(t0));
+    return decomp::max(sim.comm(), seconds_since(t0));
+}
+
+}  // namespace
+
+std::string run_problem(const RunRequest& req, MPI_Comm comm) {
+    const Config& cfg = req.config;
+    if (cfg.integer("checkpoint_every") > 0 && req.output_dir.empty())
+        throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
+    prepare_output_dir(req.output_dir, comm);
+
+    Simulation sim(comm, run_settings(cfg));
+    auto problem = req.problem->factory(cfg);
+    problem->build(sim);
+    std::vector<ThermoSample> series;  // samples of the measured phase
+    if (req.restart) {
+        io::restore_checkpoint(req.restart_file, sim, *req.restart);
+        series = req.restart->series;
+    } else {
+        problem->place_particles(sim);
+        sim.initialise();
+    }
+    io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim));
+    if (req.restart) output.restore_fields(*req.restart, sim.rank());
+    output.on_step(sim);
+
+    const long long n_eq = cfg.integer("equilibration_steps");
+    const long long timed_steps = n_eq + cfg.integer("steps") - std::max(sim.step_index(), n_eq);
+    const double wall = advance(sim, req, output, series);
     output.finish(sim);
-
-    BlockAverage temperature, pressure, potential;
-    for (std::size_t k = 1; k < series.size(); ++k) {
-        temperature.add(series[k].temperature);
-        pressure.add(series[k].pressure);
-        potential.add(series[k].potential);
-    }
     if (series.empty()) series.push_back(sim.measure());
-    const long long timed_steps = end - timed_from;
-    const PhaseTimes& p = sim.phase_times();
-    const long long rss = decomp::sum(comm, peak_rss_bytes_of_rank());
-    const double n = static_cast<double>(sim.n_global());
-    const Int3 dims = sim.rank_grid_dims();
-    std::ostringstream json;
-    json << "{\n"
-         << "  \"scene\": \"" << cfg.scene() << "\",\n"
-         << "  \"N\": " << sim.n_global() << ",\n"
-         << "  \"ranks\": " << sim.n_ranks() << ",\n"
-         << "  \"grid\": \"" << dims.x << "x" << dims.y << "x" << dims.z << "\",\n"
-         << "  \"steps\": " << n_steps << ",\n"
-         << "  \"equilibration_steps\": " << n_eq << ",\n"
-         << "  \"dt\": " << json_number(sim.dt()) << ",\n"
-         << "  \"wall_seconds\": " << json_number(wall) << ",\n"
-         << "  \"atom_steps_per_second\": " << json_number(wall > 0 ? n * timed_steps / wall : 0)
-         << ",\n"
-         << "  \"neighbour_rebuilds\": " << sim.rebuilds() << ",\n"
-         << "  \"samples\": " << temperature.count() << ",\n"
-         << "  \"mean_temperature\": " << json_number(temperature.mean()) << ",\n"
-         << "  \"stderr_temperature\": " << json_number(temperature.standard_error()) << ",\n"
-         << "  \"mean_pressure\": " << json_number(pressure.mean()) << ",\n"
-         << "  \"stderr_pressure\": " << json_number(pressure.standard_error()) << ",\n"
-         << "  \"mean_potential_energy\": " << json_number(potential.mean()) << ",\n"
-         << "  \"stderr_potential_energy\": " << json_number(potential.standard_error()) << ",\n"
-         << "  \"energy_drift_per_particle\": "
-         << json_number(series.back().total - series.front().total) << ",\n"
-         << "  \"energy_drift_rate\": " << json_number(drift_rate(series)) << ",\n"
-         << "  \"final_momentum\": [" << json_number(series.back().momentum.x) << ", "
-         << json_number(series.back().momentum.y) << ", "
-         << json_number(series.back().momentum.z) << "],\n"
-         << "  \"seconds_neighbour\": " << json_number(decomp::max(comm, p.neighbour)) << ",\n"
-         << "  \"seconds_force\": " << json_number(decomp::max(comm, p.force)) << ",\n"
-         << "  \"seconds_integrate\": " << json_number(decomp::max(comm, p.integrate)) << ",\n"
-         << "  \"seconds_communicate\": " << json_number(decomp::max(comm, p.communicate))
-         << ",\n"
-         << "  \"peak_rss_bytes\": " << rss << ",\n"
-         << "  \"bytes_per_particle\": " << json_number(rss / n) << "\n"
-         << "}\n";
 
-    if (rank == 0) {
+    const std::string json = summary_json(sim, cfg, series, wall, timed_steps);
+    if (sim.rank() == 0) {
         if (!req.output_dir.empty()) {
-            std::ostringstream table;
-            table << "# step time temperature pressure kinetic potential total px py pz\n";
-            for (const auto& t : series)
-                table << t.step << ' ' << json_number(t.time) << ' ' << json_number(t.temperature)
-                      << ' ' << json_number(t.pressure) << ' ' << json_number(t.kinetic) << ' '
-                      << json_number(t.potential) << ' ' << json_number(t.total) << ' '
-                      << json_number(t.momentum.x) << ' ' << json_number(t.momentum.y) << ' '
-                      << json_number(t.momentum.z) << '\n';
-            io::write_atomically(req.output_dir + "/thermo.dat", table.str());
-            io::write_atomically(req.output_dir + "/summary.json", json.str());
+            io::write_atomically(req.output_dir + "/thermo.dat", thermo_table(series));
+            io::write_atomically(req.output_dir + "/summary.json", json);
         }
-        if (!req.summary_json.empty()) io::write_atomically(req.summary_json, json.str());
+        if (!req.summary_json.empty()) io::write_atomically(req.summary_json, json);
     }
-    return json.str();
+    return json;
 }
 
 }  // namespace emergent::app

@@ -47,6 +47,25 @@ std::vector<char> IdOrder::gather(const void* field, std::size_t bytes) const {
     return ordered;
 }
 
+/// Rows [first, first + count) of a dataset of shape {N} or {N, width}, in file and memory
+/// (an empty selection on ranks without rows: they still join the collective call).
+struct RowSelection {
+    H5Id file, memory;
+    RowSelection(hid_t set, int width, long long first, std::size_t count) {
+        const int rank = width > 0 ? 2 : 1;
+        const hsize_t start[2] = {static_cast<hsize_t>(first), 0};
+        const hsize_t extent[2] = {count, static_cast<hsize_t>(width)};
+        file = H5Id(H5Dget_space(set));
+        memory = H5Id(H5Screate_simple(rank, extent, nullptr));
+        if (count == 0) {
+            H5Sselect_none(file);
+            H5Sselect_none(memory);
+        } else {
+            H5Sselect_hyperslab(file, H5S_SELECT_SET, start, nullptr, extent, nullptr);
+        }
+    }
+};
+
 void write_rows(hid_t parent, const char* name, hid_t type, long long n_global, int width,
                 const void* rows, long long first, std::size_t count) {
     const int rank = width > 0 ? 2 : 1;
@@ -54,37 +73,18 @@ void write_rows(hid_t parent, const char* name, hid_t type, long long n_global, 
     H5Id space(H5Screate_simple(rank, dims, nullptr));
     H5Id set(h5_check(H5Dcreate2(parent, name, type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                       std::string("dataset ") + name));
-    const hsize_t start[2] = {static_cast<hsize_t>(first), 0};
-    const hsize_t extent[2] = {count, static_cast<hsize_t>(width)};
-    H5Id file(H5Dget_space(set));
-    H5Id mem(H5Screate_simple(rank, extent, nullptr));
-    if (count == 0) {
-        H5Sselect_none(file);
-        H5Sselect_none(mem);
-    } else {
-        H5Sselect_hyperslab(file, H5S_SELECT_SET, start, nullptr, extent, nullptr);
-    }
+    const RowSelection rows_here(set, width, first, count);
     H5Id xfer = collective_transfer();
-    h5_check(H5Dwrite(set, type, mem, file, xfer, rows), std::string("write ") + name);
+    h5_check(H5Dwrite(set, type, rows_here.memory, rows_here.file, xfer, rows), std::string("write ") + name);
 }
 
 void read_rows(hid_t parent, const char* name, hid_t type, int width, void* rows,
                long long first, std::size_t count) {
     H5Id set(H5Dopen2(parent, name, H5P_DEFAULT));
     if (set < 0) throw InputError(std::string("checkpoint has no dataset '") + name + "'");
-    const int rank = width > 0 ? 2 : 1;
-    const hsize_t start[2] = {static_cast<hsize_t>(first), 0};
-    const hsize_t extent[2] = {count, static_cast<hsize_t>(width)};
-    H5Id file(H5Dget_space(set));
-    H5Id mem(H5Screate_simple(rank, extent, nullptr));
-    if (count == 0) {
-        H5Sselect_none(file);
-        H5Sselect_none(mem);
-    } else {
-        H5Sselect_hyperslab(file, H5S_SELECT_SET, start, nullptr, extent, nullptr);
-    }
+    const RowSelection rows_here(set, width, first, count);
     H5Id xfer = collective_transfer();
-    h5_check(H5Dread(set, type, mem, file, xfer, rows), std::string("read ") + name);
+    h5_check(H5Dread(set, type, rows_here.memory, rows_here.file, xfer, rows), std::string("read ") + name);
 }
 
 }  // namespace emergent::io

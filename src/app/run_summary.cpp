@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+// Run summary.
+#include "app/run_summary.hpp"
+
+#include <sys/resource.h>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "decomposition/reductions.hpp"
+#include "observe/block_average.hpp"
+
+namespace emergent::app {
+
+namespace {
+/// Least-squares slope of total energy per particle against time.
+double drift_rate(const std::vector<ThermoSample>& s) {
+    if (s.size() < 2) return 0;
+    double mt = 0, me = 0;
+    for (const auto& x : s) mt += x.time, me += x.total;
+    mt /= s.size();
+    me /= s.size();
+    double num = 0, den = 0;
+    for (const auto& x : s) num += (x.time - mt) * (x.total - me), den += (x.time - mt) * (x.time - mt);
+    return den > 0 ? num / den : 0;
+}
+
+std::string number(double v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.12g", v);
+    return buf;
+}
+
+long long peak_rss_bytes_of_rank() {
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    return static_cast<long long>(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+}  // namespace
+
+std::string summary_json(const Simulation& sim, const Config& cfg,
+                         const std::vector<ThermoSample>& series, double wall,
+                         long long timed_steps) {
+    MPI_Comm comm = sim.comm();
+    BlockAverage temperature, pressure, potential;
+    for (std::size_t k = 1; k < series.size(); ++k) {
+        temperature.add(series[k].temperature);
+        pressure.add(series[k].pressure);
+        potential.add(series[k].potential);
+    }
+    const PhaseTimes& p = sim.phase_times();
+    const long long rss = decomp::sum(comm, peak_rss_bytes_of_rank());
+    const double n = static_cast<double>(sim.n_global());
+    const Int3 dims = sim.rank_grid_dims();
+    const ThermoSample& first = series.front();
+    const ThermoSample& last = series.back();
+    std::ostringstream json;
+    auto field = [&](const char* name, const std::string& value, bool comma = true) {
+        json << "  \"" << name << "\": " << value << (comma ? ",\n" : "\n");
+    };
+    json << "{\n";
+    field("scene", "\"" + cfg.scene() + "\"");
+    field("N", std::to_string(sim.n_global()));
+    field("ranks", std::to_string(sim.n_ranks()));
+    field("grid", "\"" + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                      std::to_string(dims.z) + "\"");
+    field("steps", cfg.text("steps"));
+    field("equilibration_steps", cfg.text("equilibration_steps"));
+    field("dt", number(sim.dt()));
+    field("wall_seconds", number(wall));
+    field("atom_steps_per_second", number(wall > 0 ? n * timed_steps / wall : 0));
+    field("neighbour_rebuilds", std::to_string(sim.rebuilds()));
+    field("samples", std::to_string(temperature.count()));
+    field("mean_temperature", number(temperature.mean()));
+    field("stderr_temperature", number(temperature.standard_error()));
+    field("mean_pressure", number(pressure.mean()));
+    field("stderr_pressure", number(pressure.standard_error()));
+    field("mean_potential_energy", number(potential.mean()));
+    field("stderr_potential_energy", number(potential.standard_error()));
+    field("energy_drift_per_particle", number(last.total - first.total));
+    field("energy_drift_rate", number(drift_rate(series)));
+    field("final_momentum", "[" + number(last.momentum.x) + ", " + number(last.momentum.y) +
+                                ", " + number(last.momentum.z) + "]");
+    field("seconds_neighbour", number(decomp::max(comm, p.neighbour)));
+    field("seconds_force", number(decomp::max(comm, p.force)));
+    field("seconds_integrate", number(decomp::max(comm, p.integrate)));
+    field("seconds_communicate", number(decomp::max(comm, p.communicate)));
+    field("peak_rss_bytes", std::to_string(rss));
+    field("bytes_per_particle", number(rss / n), false);
+    json << "}\n";
+    return json.str();
+}
+
+std::string thermo_table(const std::vector<ThermoSample>& series) {
+    std::ostringstream table;
+    table << "# step time temperature pressure kinetic potential total px py pz\n";
+    for (const auto& t : series)
+        table << t.step << ' ' << number(t.time) << ' ' << number(t.temperature) << ' '
+              << number(t.pressure) << ' ' << number(t.kinetic) << ' ' << number(t.potential)
+              << ' ' << number(t.total) << ' ' << number(t.momentum.x) << ' '
+              << number(t.momentum.y) << ' ' << number(t.momentum.z) << '\n';
+    return table.str();
+}
+
+}  // namespace emergent::app
