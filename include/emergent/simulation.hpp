@@ -113,6 +113,8 @@ public:
     // --- checkpoints ---
     /// A copy of the current state (owned particles only; cheap next to a step).
     StateSnapshot snapshot() const;
+    /// The same into an existing snapshot, reusing its memory (no second copy at the peak).
+    void snapshot(StateSnapshot& into) const;
     /// Returns to a snapshot taken earlier on the same ranks.
     void restore(const StateSnapshot& snapshot);
     /// Owned positions at the last neighbour-list build, in the order of particles().

@@ -54,12 +54,13 @@ private:
 
 
 /// Returns the run to its last good state and saves it as DIR/last_good.h5; says where.
-std::string save_last_good(Simulation& sim, const StateSnapshot& good, const Config& cfg,
+std::string save_last_good(Simulation& sim, const StateSnapshot* good, const Config& cfg,
                            std::vector<ThermoSample> series, const std::string& dir) {
-    const std::string at = "last good state at step " + std::to_string(good.step);
+    if (!good) return "no good state was kept (guard.every=0)";
+    const std::string at = "last good state at step " + std::to_string(good->step);
     if (dir.empty()) return at + " (run with -o DIR to keep it as a checkpoint)";
-    sim.restore(good);
-    while (!series.empty() && series.back().step > good.step) series.pop_back();
+    sim.restore(*good);
+    while (!series.empty() && series.back().step > good->step) series.pop_back();
     io::write_checkpoint(dir + "/last_good.h5", sim, cfg, series, {});
     return at + " saved in " + dir + "/last_good.h5";
 }

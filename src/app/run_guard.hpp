@@ -21,13 +21,15 @@ public:
     /// Energy-drift check at a sample (NVE only).
     void on_sample(const Simulation& sim, const ThermoSample& t);
 
-    const StateSnapshot& last_good() const { return last_good_; }
+    /// The last state that passed the checks; null when none was kept (guard.every = 0 and no
+    /// checkpoint yet).
+    const StateSnapshot* last_good() const { return have_good_ ? &last_good_ : nullptr; }
 
 private:
     GuardLimits limits_;
     long long every_ = 0;
     double max_drift_ = 0, reference_energy_ = 0;
-    bool have_reference_ = false;
+    bool have_reference_ = false, have_good_ = false;
     StateSnapshot last_good_;
 };
 

@@ -2,6 +2,7 @@
 // The time step and the parts it is made of.
 #include "emergent/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -285,27 +286,30 @@ void Simulation::check_guards(const GuardLimits& limits) const {
 }
 
 StateSnapshot Simulation::snapshot() const {
-    const Engine& e = *engine_;
     StateSnapshot snap;
+    snapshot(snap);
+    return snap;
+}
+
+void Simulation::snapshot(StateSnapshot& snap) const {
+    const Engine& e = *engine_;
     const std::size_t n = e.store.n_owned();
+    if (e.store.has_rigid_fields() && !snap.owned.has_rigid_fields()) snap.owned.enable_rigid_fields();
     snap.owned.resize_owned(n);
-    // Bulk copies of the owned part of each field (ghosts are rebuilt on restore).
-    snap.owned.position.assign(e.store.position.begin(), e.store.position.begin() + n);
-    snap.owned.velocity.assign(e.store.velocity.begin(), e.store.velocity.begin() + n);
-    snap.owned.species.assign(e.store.species.begin(), e.store.species.begin() + n);
-    snap.owned.id.assign(e.store.id.begin(), e.store.id.begin() + n);
-    snap.owned.image.assign(e.store.image.begin(), e.store.image.begin() + n);
-    snap.owned.diameter.assign(e.store.diameter.begin(), e.store.diameter.begin() + n);
-    if (e.store.has_rigid_fields()) {
-        snap.owned.enable_rigid_fields();
-        snap.owned.body.assign(e.store.body.begin(), e.store.body.begin() + n);
-    }
-    if (e.bodies()) snap.bodies = e.rigid.bodies();
+    // Copies of the owned part of each field into the snapshot's existing storage (ghosts and
+    // forces are rebuilt on restore).
+    std::copy_n(e.store.position.begin(), n, snap.owned.position.begin());
+    std::copy_n(e.store.velocity.begin(), n, snap.owned.velocity.begin());
+    std::copy_n(e.store.species.begin(), n, snap.owned.species.begin());
+    std::copy_n(e.store.id.begin(), n, snap.owned.id.begin());
+    std::copy_n(e.store.image.begin(), n, snap.owned.image.begin());
+    std::copy_n(e.store.diameter.begin(), n, snap.owned.diameter.begin());
+    if (e.store.has_rigid_fields()) std::copy_n(e.store.body.begin(), n, snap.owned.body.begin());
     snap.reference = e.list.reference_positions();
+    if (e.bodies()) snap.bodies = e.rigid.bodies();
     snap.step = e.step;
     snap.time = e.time;
     snap.rebuilds = e.rebuilds;
-    return snap;
 }
 
 void Simulation::restore(const StateSnapshot& snapshot) {
