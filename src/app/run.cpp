@@ -175,6 +175,16 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
 
     const std::string json = summary_json(sim, cfg, series, wall, timed_steps);
     if (sim.rank() == 0) {
+        // One closing line a person can read; the full summary is in the JSON.
+        const ThermoSample& last = series.back();
+        std::printf("%s: N=%lld on %d rank(s), at step %lld; measured %lld steps in %.3g s "
+                    "(%.3g atom-steps/s); final T=%.4f P=%.4f U/N=%.4f (averages: summary JSON)"
+                    "%s%s\n",
+                    cfg.scene().c_str(), sim.n_global(), sim.n_ranks(), sim.step_index(),
+                    timed_steps, wall, wall > 0 ? sim.n_global() * double(timed_steps) / wall : 0.0,
+                    last.temperature, last.pressure, last.potential,
+                    req.output_dir.empty() ? "" : "; output in ", req.output_dir.c_str());
+        std::fflush(stdout);
         if (!req.output_dir.empty()) {
             io::write_atomically(req.output_dir + "/thermo.dat", thermo_table(series));
             io::write_atomically(req.output_dir + "/summary.json", json);
