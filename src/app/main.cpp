@@ -9,6 +9,7 @@
 
 #include "app/run.hpp"
 #include "emergent/error.hpp"
+#include "emergent/plugin.hpp"
 #include "emergent/problem.hpp"
 #include "io/checkpoint.hpp"
 
@@ -22,7 +23,8 @@ const char* kUsage =
     "       emergent help <scene>\n"
     "       emergent run <scene> [--preset P] [--config file.ini]... [--set key=value]...\n"
     "                            [-o DIR] [--summary-json FILE] [--checkpoint-every N]\n"
-    "       emergent run --restart DIR/checkpoint.h5 [--set key=value]... [-o DIR]\n";
+    "       emergent run --restart DIR/checkpoint.h5 [--set key=value]... [-o DIR]\n"
+    "       emergent --plugin my_scene.so <command> ...   (out-of-tree scenes)\n";
 
 const ProblemInfo& find_scene(const std::string& name) {
     const ProblemInfo* info = ProblemRegistry::instance().find(name);
@@ -108,9 +110,20 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
 }
 
 int dispatch(int argc, char** argv, MPI_Comm comm, int rank) {
-    if (argc < 2) throw InputError(std::string("no command given\n") + kUsage);
-    const std::string command = argv[1];
-    std::vector<std::string> args(argv + 2, argv + argc);
+    // --plugin PATH may appear anywhere; plugins load before the command runs.
+    std::vector<std::string> words;
+    for (int k = 1; k < argc; ++k) {
+        const std::string word = argv[k];
+        if (word == "--plugin") {
+            if (k + 1 >= argc) throw InputError("--plugin needs a path to a shared library");
+            load_plugin(argv[++k]);
+        } else {
+            words.push_back(word);
+        }
+    }
+    if (words.empty()) throw InputError(std::string("no command given\n") + kUsage);
+    const std::string command = words.front();
+    std::vector<std::string> args(words.begin() + 1, words.end());
     if (command == "list") {
         if (rank == 0) list_scenes(std::cout);
         return 0;

@@ -15,7 +15,7 @@ ProblemRegistry& ProblemRegistry::instance() {
 bool ProblemRegistry::add(ProblemInfo info) {
     const std::string name = info.name;
     if (!problems_.emplace(name, std::move(info)).second)
-        throw std::logic_error("problem registered twice: " + name);
+        throw std::logic_error("scene '" + name + "' is already registered");
     return true;
 }
 

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// An out-of-tree scene for the plugin test: a small WCA gas, built as a shared library.
+#include <cmath>
+
+#include "emergent/plugin.hpp"
+#include "emergent/random.hpp"
+
+namespace {
+
+class DemoGas final : public emergent::Problem {
+public:
+    explicit DemoGas(const emergent::Config& c) : n_(static_cast<int>(c.integer("n"))) {}
+    void build(emergent::Simulation& sim) override {
+        emergent::Box box;
+        box.hi = {8, 8, 8};
+        sim.set_box(box);
+        sim.set_species_masses({1.0});
+        sim.add_force(emergent::make_lennard_jones(1, 1, std::pow(2.0, 1.0 / 6)));
+    }
+    void place_particles(emergent::Simulation& sim) override {
+        for (int i = 0; i < n_; ++i)  // a simple cubic lattice of spacing 1.6 inside the box
+            sim.add_particle({0.8 + 1.6 * (i % 5), 0.8 + 1.6 * ((i / 5) % 5), 0.8 + 1.6 * (i / 25)},
+                             {0, 0, 0}, 0, i);
+        sim.assign_thermal_velocities(1.0, 7);
+    }
+
+private:
+    int n_;
+};
+
+emergent::ProblemInfo demo_info() {
+    emergent::ProblemInfo info;
+    info.name = PLUGIN_SCENE_NAME;
+    info.description = "plugin test: a WCA gas from a shared library";
+    info.schema = emergent::run_schema();
+    info.schema.integer("n", 100, 1, 125, "1", "particles");
+    info.presets["tiny"] = {{"steps", "100"}, {"equilibration_steps", "0"}};
+    info.factory = [](const emergent::Config& c) { return std::make_unique<DemoGas>(c); };
+    return info;
+}
+
+}  // namespace
+
+#ifdef PLUGIN_WRONG_ABI
+#undef EMERGENT_PLUGIN_ABI
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-0"
+#endif
+EMERGENT_PLUGIN(demo_info)
