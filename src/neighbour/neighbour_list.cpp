@@ -11,7 +11,11 @@
 
 namespace emergent {
 
-void NeighbourList::build_general(const ParticleStore& store, const CellList& cells) {
+void NeighbourList::build_full(const ParticleStore& store, const CellList& cells) {
+    build_general(store, cells, true);
+}
+
+void NeighbourList::build_general(const ParticleStore& store, const CellList& cells, bool full) {
     const std::size_t n_owned = store.n_owned();
     const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
@@ -32,7 +36,7 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
                     for (const std::uint32_t* pj = cells.members_begin(c2); pj != cells.members_end(c2);
                          ++pj) {
                         const std::uint32_t j = *pj;
-                        if (j <= i) continue;
+                        if (full ? j == i : j <= i) continue;
                         if (body && body[i] >= 0 && body[i] == body[j]) continue;  // same body
                         const Vec3 r = x[i] - x[j];
                         if (dot(r, r) < r2max) neighbour_.push_back(j);
@@ -47,7 +51,7 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
 void NeighbourList::build(const ParticleStore& store, const CellList& cells,
                           bool owned_outside_domain) {
     if (owned_outside_domain) {
-        build_general(store, cells);
+        build_general(store, cells, false);
         return;
     }
     const std::size_t n_owned = store.n_owned();

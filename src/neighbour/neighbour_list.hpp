@@ -33,6 +33,11 @@ public:
     /// are never listed.
     void build(const ParticleStore& store, const CellList& cells, bool owned_outside_domain = false);
 
+    /// Builds a full list instead: every owned i lists every j != i in range (ghosts
+    /// included), so a per-particle loop can sum its own force without writing to partners —
+    /// the layout of the GPU pair kernel (no atomics). Twice the entries of the half list.
+    void build_full(const ParticleStore& store, const CellList& cells);
+
     /// Largest squared displacement of an owned particle since the last build; NaN if any
     /// position is not finite.
     double max_displacement_sq(const ParticleStore& store) const;
@@ -49,7 +54,7 @@ public:
     const std::uint32_t* neighbours() const { return neighbour_.data(); }
 
 private:
-    void build_general(const ParticleStore& store, const CellList& cells);
+    void build_general(const ParticleStore& store, const CellList& cells, bool full);
 
     double cutoff_ = 0, skin_ = 0;
     std::size_t n_pairs_ = 0;
