@@ -87,11 +87,11 @@ void HaloExchange::pack_fields_shifted(ParticleStore& store, unsigned fields, co
 void HaloExchange::gather(std::vector<Vec3>& field, bool shift) {
     for (const Swap& swap : swaps_) {
         const std::size_t n = swap.export_index.size();
-        send_positions_.resize(n);
+        send_vectors_.resize(n);
         const Vec3* x = field.data();
         const Vec3 offset = shift ? swap.shift : Vec3{0, 0, 0};
-        for (std::size_t k = 0; k < n; ++k) send_positions_[k] = x[swap.export_index[k]] + offset;
-        exchange(swap, send_positions_.data(), n * sizeof(Vec3), field.data() + swap.import_first,
+        for (std::size_t k = 0; k < n; ++k) send_vectors_[k] = x[swap.export_index[k]] + offset;
+        exchange(swap, send_vectors_.data(), n * sizeof(Vec3), field.data() + swap.import_first,
                  swap.import_count * sizeof(Vec3), kDataTag);
     }
 }

@@ -52,7 +52,7 @@ private:
     MPI_Comm comm_ = MPI_COMM_NULL;
     std::vector<Swap> swaps_;
     std::vector<char> send_buffer_, recv_buffer_;
-    std::vector<Vec3> send_positions_;
+    std::vector<Vec3> send_vectors_;
     std::size_t n_ghost_ = 0;
 };
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "emergent/vec3.hpp"
+
 namespace emergent {
 
 enum class ParamType { Integer, Real, Text, Choice };
@@ -73,6 +75,10 @@ std::map<std::string, std::string> read_ini(const std::string& path);
 
 /// Splits "key=value"; throws InputError for anything else.
 std::pair<std::string, std::string> split_assignment(const std::string& text);
+
+/// Parses "AxBxC" (three positive integers, e.g. a rank grid or cell counts) into `out`;
+/// false for anything else, so the caller can name the item in its error.
+bool parse_counts(const std::string& text, Int3& out);
 
 /// Parses a finite number, or throws InputError naming `what`.
 double parse_number(const std::string& what, const std::string& text);

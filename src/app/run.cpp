@@ -69,10 +69,7 @@ std::string save_last_good(Simulation& sim, const StateSnapshot* good, const Con
 Int3 parse_grid(const std::string& scene, const std::string& text) {
     if (text == "auto") return {0, 0, 0};
     Int3 g{0, 0, 0};
-    char x1 = 0, x2 = 0, extra = 0;
-    std::istringstream in(text);
-    if (!(in >> g.x >> x1 >> g.y >> x2 >> g.z) || x1 != 'x' || x2 != 'x' || (in >> extra) ||
-        g.x < 1 || g.y < 1 || g.z < 1)
+    if (!parse_counts(text, g))
         throw InputError(scene + ": grid=" + text + " must be 'auto' or NXxNYxNZ, e.g. 2x1x1");
     return g;
 }

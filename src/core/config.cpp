@@ -53,6 +53,17 @@ double parse_number(const std::string& what, const std::string& text) {
     return v;
 }
 
+bool parse_counts(const std::string& text, Int3& out) {
+    char x1 = 0, x2 = 0, extra = 0;
+    std::istringstream in(text);
+    Int3 n{0, 0, 0};
+    if (!(in >> n.x >> x1 >> n.y >> x2 >> n.z) || x1 != 'x' || x2 != 'x' || (in >> extra) ||
+        n.x < 1 || n.y < 1 || n.z < 1)
+        return false;
+    out = n;
+    return true;
+}
+
 std::pair<std::string, std::string> split_assignment(const std::string& text) {
     const auto eq = text.find('=');
     if (eq == std::string::npos || trim(text.substr(0, eq)).empty())

@@ -134,17 +134,8 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
             h.config[name] = read_string_attribute(params, name);
         }
     }
-    H5Id set(h5_check(H5Dopen2(root, "series", H5P_DEFAULT), "checkpoint series"));
-    H5Id space(H5Dget_space(set));
-    hsize_t dims[2] = {0, 0};
-    H5Sget_simple_extent_dims(space, dims, nullptr);
-    std::vector<double> rows(dims[0] * kSeriesColumns);
-    if (dims[0] > 0) {
-        H5Id xfer = collective_transfer();
-        h5_check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer, rows.data()),
-                 "checkpoint series");
-    }
-    for (hsize_t k = 0; k < dims[0]; ++k) {
+    const std::vector<double> rows = read_doubles(root, "series");
+    for (std::size_t k = 0; k < rows.size() / kSeriesColumns; ++k) {
         const double* r = &rows[k * kSeriesColumns];
         ThermoSample t;
         t.step = static_cast<long long>(r[0]);
@@ -163,14 +154,7 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
             H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name,
                                H5P_DEFAULT);
             H5Id set(h5_check(H5Dopen2(group, name, H5P_DEFAULT), "checkpoint field"));
-            H5Id fspace(H5Dget_space(set));
-            std::vector<double> sums(static_cast<std::size_t>(H5Sget_simple_extent_npoints(fspace)));
-            if (!sums.empty()) {
-                H5Id xfer = collective_transfer();
-                h5_check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer, sums.data()),
-                         "checkpoint field");
-            }
-            h.fields[name] = {sums, read_integer_attribute(set, "samples")};
+            h.fields[name] = {read_doubles(group, name), read_integer_attribute(set, "samples")};
         }
     }
     return h;

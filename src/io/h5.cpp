@@ -176,6 +176,18 @@ void write_small_dataset(hid_t parent, const std::string& name, hid_t type,
     h5_check(H5Dwrite(set, type, mem_space, file_space, xfer, data), "dataset " + name);
 }
 
+std::vector<double> read_doubles(hid_t parent, const std::string& name) {
+    H5Id set(h5_check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "dataset " + name));
+    H5Id space(H5Dget_space(set));
+    std::vector<double> values(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    if (!values.empty()) {
+        H5Id xfer = collective_transfer();
+        h5_check(H5Dread(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, xfer, values.data()),
+                 "dataset " + name);
+    }
+    return values;
+}
+
 H5Id collective_transfer() {
     H5Id xfer(H5Pcreate(H5P_DATASET_XFER));
     H5Pset_dxpl_mpio(xfer, H5FD_MPIO_COLLECTIVE);

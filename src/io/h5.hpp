@@ -58,6 +58,9 @@ double read_double_attribute(hid_t object, const std::string& name);
 void write_small_dataset(hid_t parent, const std::string& name, hid_t type,
                          const std::vector<hsize_t>& shape, const void* data, MPI_Comm comm);
 
+/// Reads a whole float64 dataset on every rank (collectively); empty if it has no elements.
+std::vector<double> read_doubles(hid_t parent, const std::string& name);
+
 /// Transfer property for collective writes and reads.
 H5Id collective_transfer();
 

@@ -27,10 +27,7 @@ std::vector<std::string> parse_elements(const std::string& scene, const std::str
 
 FieldGrid parse_box_grid(const std::string& scene, const std::string& text, const Box& box) {
     FieldGrid g;
-    char x1 = 0, x2 = 0, extra = 0;
-    std::istringstream in(text);
-    if (!(in >> g.n.x >> x1 >> g.n.y >> x2 >> g.n.z) || x1 != 'x' || x2 != 'x' || (in >> extra) ||
-        g.n.x < 1 || g.n.y < 1 || g.n.z < 1)
+    if (!parse_counts(text, g.n))
         throw InputError(scene + ": fields.grid=" + text + " must be NXxNYxNZ, e.g. 1x1x20");
     g.name = "box";
     g.lo = box.lo;
