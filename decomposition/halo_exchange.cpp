@@ -32,7 +32,9 @@ void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double widt
     swaps_.clear();
     const std::size_t stride = packed_bytes(store, fields);
     const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    wedge_ = grid.global().wedge;
     for (int d = 0; d < 3; ++d) {
+        if (d == 2 && wedge_.active()) build_wedge_images(store, width, fields, stride);
         // Both faces of an axis export from the particles present before the axis began,
         // so a ghost imported through -d is not sent straight back through +d.
         const std::size_t n_candidates = store.size();
@@ -71,26 +73,68 @@ void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double widt
     n_ghost_ = store.n_ghost();
 }
 
+void HaloExchange::build_wedge_images(ParticleStore& store, double width, unsigned fields,
+                                      std::size_t stride) {
+    // x and y are whole on this rank, so both cut faces are ours: copies from near the face
+    // theta = 0 are turned by +1 wedge angle (they appear beyond the other face), copies from
+    // near theta = 2 pi / n by -1. Both faces export only particles present before either.
+    const std::size_t n_candidates = store.size();
+    for (int side = 0; side < 2; ++side) {
+        Swap swap;
+        swap.send_rank = swap.recv_rank = MPI_PROC_NULL;
+        swap.to_self = true;
+        swap.turns = side == 0 ? 1 : -1;
+        for (std::size_t i = 0; i < n_candidates; ++i) {
+            const Vec3& x = store.position[i];
+            const double gap = side == 0 ? Wedge::distance_to_first_face(x)
+                                         : wedge_.distance_to_second_face(x);
+            if (gap < width) swap.export_index.push_back(static_cast<int>(i));
+        }
+        const std::size_t n = swap.export_index.size();
+        send_buffer_.clear();
+        pack_fields_shifted(store, fields, swap, stride);
+        swap.import_first = store.size();
+        swap.import_count = n;
+        store.resize_ghosts(store.n_ghost() + n);
+        unpack_fields(store, fields, send_buffer_.data(), n, swap.import_first);
+        swaps_.push_back(std::move(swap));
+    }
+}
+
 void HaloExchange::pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
                                        std::size_t stride) {
     const std::size_t n = swap.export_index.size();
     pack_fields(store, fields, swap.export_index.data(), n, send_buffer_);
-    // Position is the first packed field; the copy lands at the image across the boundary.
+    // Position is the first packed field (velocity, when packed, the second); the copy lands
+    // at the image across the boundary.
+    const bool velocity = (fields & kVelocity) != 0;
     for (std::size_t k = 0; k < n; ++k) {
+        char* record = send_buffer_.data() + k * stride;
         Vec3 x;
-        std::memcpy(&x, send_buffer_.data() + k * stride, sizeof(Vec3));
+        std::memcpy(&x, record, sizeof(Vec3));
+        if (swap.turns) x = wedge_.rotate(x, swap.turns);
         x += swap.shift;
-        std::memcpy(send_buffer_.data() + k * stride, &x, sizeof(Vec3));
+        std::memcpy(record, &x, sizeof(Vec3));
+        if (velocity && swap.turns) {
+            Vec3 v;
+            std::memcpy(&v, record + sizeof(Vec3), sizeof(Vec3));
+            v = wedge_.rotate(v, swap.turns);
+            std::memcpy(record + sizeof(Vec3), &v, sizeof(Vec3));
+        }
     }
 }
 
-void HaloExchange::gather(std::vector<Vec3>& field, bool shift) {
+void HaloExchange::gather(std::vector<Vec3>& field, bool is_position) {
     for (const Swap& swap : swaps_) {
         const std::size_t n = swap.export_index.size();
         send_vectors_.resize(n);
         const Vec3* x = field.data();
-        const Vec3 offset = shift ? swap.shift : Vec3{0, 0, 0};
-        for (std::size_t k = 0; k < n; ++k) send_vectors_[k] = x[swap.export_index[k]] + offset;
+        const Vec3 offset = is_position ? swap.shift : Vec3{0, 0, 0};
+        if (swap.turns)
+            for (std::size_t k = 0; k < n; ++k)
+                send_vectors_[k] = wedge_.rotate(x[swap.export_index[k]], swap.turns) + offset;
+        else
+            for (std::size_t k = 0; k < n; ++k) send_vectors_[k] = x[swap.export_index[k]] + offset;
         exchange(swap, send_vectors_.data(), n * sizeof(Vec3), field.data() + swap.import_first,
                  swap.import_count * sizeof(Vec3), kDataTag);
     }

@@ -17,8 +17,10 @@ namespace emergent::decomp {
 /// order -x, +x, -y, +y, -z, +z, and each axis also re-exports the ghosts imported along the
 /// earlier axes, so edge and corner ghosts arrive without diagonal messages. Crossing a
 /// periodic boundary shifts the copy by one box length; with one rank along an axis the
-/// rank exports to itself, which makes the periodic images. Nothing here knows what the
-/// fields mean, except that positions are shifted across periodic boundaries.
+/// rank exports to itself, which makes the periodic images. A wedge region (Box::wedge) adds,
+/// between the y and z phases, two exchanges of a rank with itself across the cut faces, whose
+/// copies are rotated about z. Nothing here knows what the fields mean, except that positions
+/// are shifted and rotated, and velocities rotated, across those boundaries.
 class HaloExchange {
 public:
     /// Drops old ghosts, then imports ghosts for all particles within `width` of the local
@@ -27,29 +29,34 @@ public:
 
     /// Refreshes ghost positions from their owners along the plan of the last build.
     void gather_positions(ParticleStore& store) { gather(store.position, true); }
-    /// Refreshes ghost velocities (unshifted: no boundary moves) along the same plan.
+    /// Refreshes ghost velocities (rotated across wedge faces, never shifted: no boundary
+    /// moves) along the same plan.
     void gather_velocities(ParticleStore& store) { gather(store.velocity, false); }
 
     /// Number of ghosts imported by the last build.
     std::size_t n_ghost() const { return n_ghost_; }
 
 private:
-    void gather(std::vector<Vec3>& field, bool shift);
+    void gather(std::vector<Vec3>& field, bool is_position);
 
     struct Swap {
         int send_rank = 0, recv_rank = 0;
         bool to_self = false;
         Vec3 shift{0, 0, 0};
+        int turns = 0;  ///< wedge rotations applied to the copies (before the shift)
         std::vector<int> export_index;
         std::size_t import_first = 0, import_count = 0;
     };
 
+    void build_wedge_images(ParticleStore& store, double width, unsigned fields,
+                            std::size_t stride);
     void pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
                              std::size_t stride);
     void exchange(const Swap& swap, const void* send, std::size_t send_bytes, void* recv,
                   std::size_t recv_bytes, int tag) const;
 
     MPI_Comm comm_ = MPI_COMM_NULL;
+    Wedge wedge_;
     std::vector<Swap> swaps_;
     std::vector<char> send_buffer_, recv_buffer_;
     std::vector<Vec3> send_vectors_;

@@ -41,6 +41,17 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
     store.resize_ghosts(0);
     const std::size_t stride = packed_bytes(store, kAllFields);
     const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    const Wedge& wedge = grid.global().wedge;
+    if (wedge.active()) {
+        // Through a cut face of the wedge and back in through the other, turned: x and y are
+        // whole on every rank, so this is a local move, like a periodic wrap.
+        for (std::size_t i = 0; i < store.n_owned(); ++i) {
+            const int turns = wedge.turns_into(store.position[i]);
+            if (!turns) continue;
+            store.position[i] = wedge.rotate(store.position[i], turns);
+            store.velocity[i] = wedge.rotate(store.velocity[i], turns);
+        }
+    }
     for (int d = 0; d < 3; ++d) {
         leaving_[0].clear();
         leaving_[1].clear();

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "emergent/vec3.hpp"
 
@@ -37,6 +38,17 @@ struct FieldGrid {
         return {std::sqrt(u * u + v * v), theta, p[a]};
     }
 
+    /// Components of vector v at point p along the grid's axes: (x, y, z), or (r, theta,
+    /// axis) with the radial and azimuthal directions taken at p.
+    EMERGENT_HD Vec3 components(const Vec3& p, const Vec3& v) const {
+        if (kind == Kind::Cartesian) return v;
+        const int a = axis, b = (axis + 1) % 3, c = (axis + 2) % 3;
+        const Real u = p[b] - lo[b], w = p[c] - lo[c], rho = std::sqrt(u * u + w * w);
+        if (!(rho > 0)) return {0, 0, v[a]};
+        const Real cs = u / rho, sn = w / rho;
+        return {cs * v[b] + sn * v[c], -sn * v[b] + cs * v[c], v[a]};
+    }
+
     /// Linear cell index (x fastest) of a point, or -1 outside the grid.
     EMERGENT_HD int cell_of(const Vec3& p) const {
         const Vec3 q = coordinates(p);
@@ -68,6 +80,17 @@ struct FieldGrid {
         const Real ds = (hi[axis] - lo[axis]) / n.z;
         return 0.5 * (r1 * r1 - r0 * r0) * dtheta * ds;
     }
+};
+
+/// Averages of one interval on one grid, as reduced over all ranks (identical on every rank).
+struct FieldFrame {
+    std::vector<double> density;  ///< particles per unit volume
+    /// Mass-weighted mean flow, 3 per cell: (x, y, z) on Cartesian grids, (r, theta, axis) on
+    /// cylindrical ones (components at each particle's own angle, so an azimuthal average of
+    /// v_theta is the mean swirl, not a cancelling sum of x and y).
+    std::vector<double> velocity;
+    std::vector<double> temperature;  ///< from velocity fluctuations about the cell's mean flow
+    std::vector<double> count;        ///< particle samples that fell in the cell
 };
 
 }  // namespace emergent

@@ -15,6 +15,9 @@ namespace emergent {
 
 class Simulation;
 
+/// Named values a scene records (a scalar is a vector of one), into /observables/<name>.
+using Measures = std::vector<std::pair<std::string, std::vector<double>>>;
+
 /// A scene: composes engine parts into one physical system. It holds only what is special to
 /// it; integration, neighbour search, decomposition and output belong to the engine.
 class Problem {
@@ -27,6 +30,14 @@ public:
     virtual void place_particles(Simulation& sim) = 0;
     /// Grids the scene coarse-grains on, besides the run's `fields.grid` box grid.
     virtual std::vector<FieldGrid> field_grids(const Simulation& /*sim*/) const { return {}; }
+    /// The scene's own measures at a sample step. Collective: the values must be the same on
+    /// every rank. The last ones also go into the run summary.
+    virtual Measures measures(Simulation& /*sim*/) { return {}; }
+    /// Analysis of a completed interval of one of the scene's field grids (frames are the same
+    /// on every rank), recorded at the frame's step. Called only when the run writes output.
+    virtual Measures analyse_fields(const FieldGrid& /*grid*/, const FieldFrame& /*frame*/) {
+        return {};
+    }
 };
 
 /// Named sets of parameter values, e.g. presets["tiny"]["n_cells"] = "4".

@@ -8,6 +8,7 @@
 #include <memory>
 #include <vector>
 
+#include "emergent/boundary.hpp"
 #include "emergent/box.hpp"
 #include "emergent/force_term.hpp"
 #include "emergent/particle_store.hpp"
@@ -70,10 +71,16 @@ public:
 
     // --- composition (before initialise) ---
     /// Sets the region and partitions it; split_axis[d] = false keeps axis d on one rank.
+    /// A wedge region (box.wedge) needs x and y bounded; they are then never split.
     void set_box(const Box& box, const bool split_axis[3] = nullptr);
     void set_species_masses(const std::vector<double>& masses);
     void add_force(std::unique_ptr<ForceTerm> term);
     void set_thermostat(std::unique_ptr<Thermostat> thermostat);
+    /// Adds a boundary rule (applied after each drift, in the order added); the simulation
+    /// keeps it, the scene may keep the returned pointer to read the rule's exchange.
+    BoundaryRule* add_boundary(std::unique_ptr<BoundaryRule> rule);
+    /// A rule's exchange summed over all ranks. Collective.
+    WallExchange global_exchange(const BoundaryRule& rule) const;
     /// Keeps the particle if x lies in this rank's domain.
     void add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id,
                       double diameter = 1.0);

@@ -98,8 +98,8 @@ void prepare_output_dir(const std::string& dir, MPI_Comm comm) {
 /// Steps from wherever the simulation is to the end of the run. Steps are counted globally
 /// (0 .. n_eq + n_steps), so a continued run takes the same sampling, output and checkpoint
 /// decisions as an uninterrupted one. Returns the wall time of the measured phase.
-double advance(Simulation& sim, const RunRequest& req, io::RunOutput& output,
-               std::vector<ThermoSample>& series) {
+double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::RunOutput& output,
+               std::vector<ThermoSample>& series, Measures& last_measures) {
     const Config& cfg = req.config;
     const long long n_eq = cfg.integer("equilibration_steps");
     const long long end = n_eq + cfg.integer("steps");
@@ -125,7 +125,8 @@ double advance(Simulation& sim, const RunRequest& req, io::RunOutput& output,
             if (sample_due(s)) {
                 const ThermoSample t = sim.measure();
                 guard.on_sample(sim, t);
-                output.on_sample(t);
+                last_measures = problem.measures(sim);
+                output.on_sample(t, last_measures);
                 if (s >= n_eq) series.push_back(t);
                 progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "");
             }
@@ -160,17 +161,19 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         problem->place_particles(sim);
         sim.initialise();
     }
-    io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim));
+    io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim), problem.get());
     if (req.restart) output.restore_fields(*req.restart, sim.rank());
     output.on_step(sim);
 
     const long long n_eq = cfg.integer("equilibration_steps");
     const long long timed_steps = n_eq + cfg.integer("steps") - std::max(sim.step_index(), n_eq);
-    const double wall = advance(sim, req, output, series);
+    Measures last_measures;
+    const double wall = advance(sim, *problem, req, output, series, last_measures);
     output.finish(sim);
     if (series.empty()) series.push_back(sim.measure());
+    if (last_measures.empty()) last_measures = problem->measures(sim);
 
-    const std::string json = summary_json(sim, cfg, series, wall, timed_steps);
+    const std::string json = summary_json(sim, cfg, series, wall, timed_steps, last_measures);
     if (sim.rank() == 0) {
         // One closing line a person can read; the full summary is in the JSON.
         const ThermoSample& last = series.back();

@@ -42,7 +42,7 @@ long long peak_rss_bytes_of_rank() {
 
 std::string summary_json(const Simulation& sim, const Config& cfg,
                          const std::vector<ThermoSample>& series, double wall,
-                         long long timed_steps) {
+                         long long timed_steps, const Measures& scene_measures) {
     MPI_Comm comm = sim.comm();
     BlockAverage temperature, pressure, potential;
     for (std::size_t k = 1; k < series.size(); ++k) {
@@ -87,6 +87,22 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     field("seconds_force", number(decomp::max(comm, p.force)));
     field("seconds_integrate", number(decomp::max(comm, p.integrate)));
     field("seconds_communicate", number(decomp::max(comm, p.communicate)));
+    if (!scene_measures.empty()) {
+        // The scene's own measures at the last sample.
+        std::string scene = "{";
+        for (std::size_t k = 0; k < scene_measures.size(); ++k) {
+            const auto& [name, value] = scene_measures[k];
+            scene += (k ? ", \"" : "\"") + name + "\": ";
+            if (value.size() == 1) {
+                scene += number(value[0]);
+            } else {
+                scene += "[";
+                for (std::size_t j = 0; j < value.size(); ++j) scene += (j ? ", " : "") + number(value[j]);
+                scene += "]";
+            }
+        }
+        field("scene_measures", scene + "}");
+    }
     field("peak_rss_bytes", std::to_string(rss));
     field("bytes_per_particle", number(rss / n), false);
     json << "}\n";

@@ -46,6 +46,8 @@ struct Simulation::Engine {
     std::vector<double> mass{1.0}, inverse_mass{1.0};
     std::vector<std::unique_ptr<ForceTerm>> forces;
     std::unique_ptr<Thermostat> thermostat;
+    std::vector<std::unique_ptr<BoundaryRule>> boundaries;
+    std::string boundary_fault;  ///< first particle a rule could not return, since last check
     decomp::Migration migration;
     decomp::HaloExchange halo;
     CellList cells;
@@ -72,12 +74,25 @@ struct Simulation::Engine {
         cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff());
         if (bodies() && thermostat)
             throw InputError("a thermostat with rigid bodies is not supported yet");
+        if (bodies() && !boundaries.empty())
+            throw InputError("boundary rules (hard walls) act on free particles only; rigid "
+                             "bodies need force walls");
+        if (bodies() && box.wedge.active())
+            throw InputError("rigid bodies in a wedge region are not supported");
         n_global = decomp::sum(comm, static_cast<long long>(store.n_owned()));
     }
 
     /// Re-partitions particles and rebuilds ghosts, cells and the Verlet list.
+    /// Stops every rank together if some boundary rule could not keep a particle inside.
+    void agree_on_boundary_faults() {
+        const std::string message = decomp::first_message(comm, boundary_fault);
+        boundary_fault.clear();
+        if (!message.empty()) throw InstabilityError(message);
+    }
+
     void rebuild() {
         PhaseTimer timer(times.neighbour);
+        if (!boundaries.empty()) agree_on_boundary_faults();
         if (bodies()) rigid.drop_constituents(store);
         migration.apply(store, *grid);
         if (bodies()) {
@@ -90,7 +105,11 @@ struct Simulation::Engine {
         store.permute_owned(order);
         halo.build(store, *grid, ghost_width(), ghost_fields);
         cells.bin(store.position.data(), store.size());
-        list.build(store, cells, bodies());
+        // Wedge images turned by other than a quarter or half turn land inside the domain's
+        // cells, so the search cannot assume those hold owned particles only.
+        const bool mixed_cells =
+            bodies() || (box.wedge.active() && box.wedge.n != 2 && box.wedge.n != 4);
+        list.build(store, cells, mixed_cells);
         if (bodies()) rigid.index_constituents(store);
         ++rebuilds;
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
@@ -118,6 +137,8 @@ struct Simulation::Engine {
                                             inverse_mass.data(), settings.dt});
         // Spheres of bodies were moved as free particles above; the bodies now place them.
         if (bodies()) rigid.kick_drift(store, settings.dt);
+        const BoundaryContext context{&mass, settings.dt, step};
+        for (auto& rule : boundaries) rule->apply(store, context, boundary_fault);
     }
 
     void kick() {
@@ -184,9 +205,17 @@ void Simulation::set_box(const Box& box, const bool split_axis[3]) {
                 << ", must be > 0";
             throw InputError(msg.str());
         }
+    bool split[3] = {true, true, true};
+    if (split_axis) std::copy(split_axis, split_axis + 3, split);
+    if (box.wedge.active()) {
+        if (box.periodic[0] || box.periodic[1])
+            throw InputError("box: a wedge region needs x and y bounded (not periodic)");
+        if (box.wedge.n < 2) throw InputError("box: a wedge needs n >= 2 (n = 1 is the full circle)");
+        split[0] = split[1] = false;  // both cut faces must be on every rank
+    }
     engine_->box = box;
     engine_->grid = std::make_unique<decomp::RankGrid>(engine_->comm, box, engine_->settings.grid,
-                                                       split_axis);
+                                                       split);
 }
 
 void Simulation::set_species_masses(const std::vector<double>& masses) {
@@ -201,6 +230,24 @@ void Simulation::set_species_masses(const std::vector<double>& masses) {
 void Simulation::add_force(std::unique_ptr<ForceTerm> term) {
     engine_->ghost_fields |= term->ghost_fields();
     engine_->forces.push_back(std::move(term));
+}
+
+BoundaryRule* Simulation::add_boundary(std::unique_ptr<BoundaryRule> rule) {
+    engine_->boundaries.push_back(std::move(rule));
+    return engine_->boundaries.back().get();
+}
+
+WallExchange Simulation::global_exchange(const BoundaryRule& rule) const {
+    const WallExchange& w = rule.exchange();
+    double v[6] = {static_cast<double>(w.hits), w.momentum.x, w.momentum.y, w.momentum.z,
+                   w.angular_momentum, w.energy};
+    decomp::sum_in_place(engine_->comm, v, 6);
+    WallExchange total;
+    total.hits = static_cast<long long>(v[0]);
+    total.momentum = {v[1], v[2], v[3]};
+    total.angular_momentum = v[4];
+    total.energy = v[5];
+    return total;
 }
 
 void Simulation::set_thermostat(std::unique_ptr<Thermostat> thermostat) {
@@ -263,9 +310,9 @@ void Simulation::initialise() {
 
 void Simulation::check_guards(const GuardLimits& limits) const {
     const ParticleStore& s = engine_->store;
-    std::string problem;
+    std::string problem = engine_->boundary_fault;
     const double f2max = limits.max_force * limits.max_force;
-    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+    for (std::size_t i = 0; i < s.n_owned() && problem.empty(); ++i) {
         const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
         // One sum is non-finite if any term is: a single test per particle on the fast path.
         const double sum = x.x + x.y + x.z + v.x + v.y + v.z + f.x + f.y + f.z;
@@ -453,6 +500,8 @@ bool Simulation::conserves_energy() const {
     if (engine_->thermostat) return false;
     for (const auto& term : engine_->forces)
         if (!term->conservative()) return false;
+    for (const auto& rule : engine_->boundaries)
+        if (!rule->conservative()) return false;
     return true;
 }
 const PhaseTimes& Simulation::phase_times() const { return engine_->times; }

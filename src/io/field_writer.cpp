@@ -97,6 +97,10 @@ FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
         write_attribute(group, "axis_names",
                         cyl ? std::vector<std::string>{"r", "theta", "s"}
                             : std::vector<std::string>{"x", "y", "z"});
+        // Velocity components follow the grid's axes: (v_r, v_theta, v_s) on cylindrical grids.
+        write_attribute(group, "velocity_components",
+                        cyl ? std::vector<std::string>{"r", "theta", "s"}
+                            : std::vector<std::string>{"x", "y", "z"});
         const double lo[3] = {g.lo.x, g.lo.y, g.lo.z}, hi[3] = {g.hi.x, g.hi.y, g.hi.z};
         const hsize_t three = 3;
         H5Id vec(H5Screate_simple(1, &three, nullptr));

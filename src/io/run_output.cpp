@@ -36,7 +36,8 @@ FieldGrid parse_box_grid(const std::string& scene, const std::string& text, cons
 }
 
 RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& sim,
-                     std::vector<FieldGrid> grids) {
+                     std::vector<FieldGrid> grids, Problem* scene)
+    : scene_(scene) {
     every_ = config.integer("output.every");
     const auto elements = parse_elements(config.scene(), config.text("output.elements"));
     field_interval_ = config.integer("fields.interval");
@@ -62,8 +63,10 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
 
 RunOutput::~RunOutput() = default;
 
-void RunOutput::on_sample(const ThermoSample& t) {
+void RunOutput::on_sample(const ThermoSample& t, const Measures& scene_measures) {
     if (!trajectory_) return;
+    for (const auto& [name, value] : scene_measures)
+        trajectory_->write_observable(name, t.step, t.time, value);
     trajectory_->write_observable("kinetic_energy", t.step, t.time, {t.kinetic});
     trajectory_->write_observable("potential_energy", t.step, t.time, {t.potential});
     trajectory_->write_observable("total_energy", t.step, t.time, {t.total});
@@ -87,6 +90,9 @@ void RunOutput::on_step(Simulation& sim) {
         for (std::size_t g = 0; g < fields_.size(); ++g) {
             const FieldFrame frame = fields_[g].take(sim.comm());
             if (field_writer_) field_writer_->write(g, step, sim.time(), frame);
+            if (scene_ && g > 0)  // grid 0 is the run's box grid, the others the scene's
+                for (const auto& [name, value] : scene_->analyse_fields(fields_[g].grid(), frame))
+                    trajectory_->write_observable(name, step, sim.time(), value);
         }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;

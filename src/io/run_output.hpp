@@ -6,6 +6,7 @@
 #include <string>
 
 #include "emergent/config.hpp"
+#include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 #include "io/checkpoint.hpp"
 #include "io/field_writer.hpp"
@@ -24,12 +25,13 @@ public:
     /// A run continued from a checkpoint (sim.step_index() > 0 at construction) writes
     /// trajectory.from<step>.h5 and fields.from<step>.h5, never overwriting the files of the
     /// run it continues.
+    /// `scene` (may be null) analyses the field frames of its own grids.
     RunOutput(const std::string& dir, const Config& config, Simulation& sim,
-              std::vector<FieldGrid> grids);
+              std::vector<FieldGrid> grids, Problem* scene = nullptr);
     ~RunOutput();
 
-    /// Records the observables of a sample.
-    void on_sample(const ThermoSample& t);
+    /// Records the observables of a sample, and the scene's measures taken with it.
+    void on_sample(const ThermoSample& t, const Measures& scene_measures = {});
     /// Writes a particle frame if this step is due.
     void on_step(Simulation& sim);
     /// Writes the last frame (unless just written) and marks the file complete.
@@ -48,6 +50,7 @@ private:
     std::unique_ptr<FieldWriter> field_writer_;
     long long field_interval_ = 0, field_sample_every_ = 1, last_field_step_ = -1;
     bool first_step_seen_ = false;
+    Problem* scene_ = nullptr;
 };
 
 /// Splits "a,b,c" into its items (spaces ignored); throws InputError for unknown items.

@@ -93,6 +93,9 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
         bound += own_end - cells.first(c);
         for (std::uint32_t a = cells.first(c); a < own_end; ++a) {
             const std::uint32_t i = member[a];
+            if (i >= n_owned)
+                throw std::logic_error("NeighbourList::build: a ghost lies inside the domain; "
+                                       "this region needs the general search");
             const Vec3 xi = xb[a];
             if (neighbour_.size() < count + bound) neighbour_.resize(2 * (count + bound));
             std::uint32_t* out = neighbour_.data();

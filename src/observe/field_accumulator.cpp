@@ -24,7 +24,7 @@ void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>
         const int c = grid_.cell_of(x);
         if (c < 0) continue;
         const double m = species_mass[store.species[i]];
-        const Vec3& v = store.velocity[i];
+        const Vec3 v = grid_.components(x, store.velocity[i]);
         double* s = &sums_[static_cast<std::size_t>(c) * kSums];
         s[0] += 1;
         s[1] += m;

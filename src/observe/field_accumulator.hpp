@@ -12,14 +12,6 @@
 
 namespace emergent {
 
-/// Averages of one interval on one grid, as reduced over all ranks.
-struct FieldFrame {
-    std::vector<double> density;      ///< particles per unit volume
-    std::vector<double> velocity;     ///< mass-weighted mean flow, 3 per cell (x, y, z)
-    std::vector<double> temperature;  ///< from velocity fluctuations about the cell's mean flow
-    std::vector<double> count;        ///< particle samples that fell in the cell
-};
-
 /// Accumulates per-cell sums over samples; cost per sample is proportional to the particles
 /// (one cell lookup each), and the cells are reduced across ranks only when a frame is taken.
 class FieldAccumulator {

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: MIT
+// Initial placement of a fluid on a lattice filling a region of any shape.
+#pragma once
+
+#include <cstdint>
+#include <cmath>
+#include <functional>
+
+#include "emergent/vec3.hpp"
+
+namespace emergent {
+
+class Simulation;
+
+/// Adds particles at rest (species 0, diameter 1) on a rectangular lattice of `spacing` per
+/// axis, at the points lo + spacing * (i + 1/2, j + 1/2, k + 1/2) inside [lo, hi) for which
+/// `inside` is true. Ids run from `first_id` in lattice order, the same on every rank. Returns the number
+/// of points kept (all ranks together).
+std::int64_t fill_cubic_lattice(Simulation& sim, const Vec3& lo, const Vec3& hi, const Vec3& spacing,
+                                const std::function<bool(const Vec3&)>& inside,
+                                std::int64_t first_id = 0);
+
+/// Number of points fill_cubic_lattice would place (no particles are added).
+std::int64_t count_cubic_lattice(const Vec3& lo, const Vec3& hi, const Vec3& spacing,
+                                 const std::function<bool(const Vec3&)>& inside);
+
+/// Adds `target` particles, or within 0.1 % of it, on a rectangular lattice filling the
+/// region: the spacing is adjusted until the count matches (the number density of a region
+/// whose walls cut the lattice is then what was asked for, not that of the infinite
+/// lattice). `periodic[d]` keeps a whole number of cells along axis d. Returns the count.
+std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3& hi,
+                                     std::int64_t target, const bool periodic[3],
+                                     const std::function<bool(const Vec3&)>& inside);
+
+/// Lattice spacing for number density `density` on a simple cubic lattice.
+inline double cubic_spacing(double density) { return 1.0 / std::cbrt(density); }
+
+/// The spacing nearest `spacing` that fits a whole number of cells into `length` (for
+/// periodic directions, where the lattice must tile the box).
+inline double tiling_spacing(double length, double spacing) {
+    const double n = std::round(length / spacing);
+    return length / (n < 1 ? 1 : n);
+}
+
+}  // namespace emergent

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: MIT
+// Scene `planar-couette`: a WCA fluid sheared between two parallel thermal walls moving in
+// opposite directions; measures the shear viscosity from the momentum the walls pass through
+// the fluid and the shear rate of the measured flow profile. It is the independent viscosity
+// measurement behind the Reynolds and Taylor numbers of the taylor-couette scene.
+#include <cmath>
+
+#include "emergent/lattice.hpp"
+#include "emergent/problem.hpp"
+#include "emergent/simulation.hpp"
+#include "observe/block_average.hpp"
+
+namespace emergent::problems {
+
+namespace {
+
+class PlanarCouette final : public Problem {
+public:
+    explicit PlanarCouette(const Config& c)
+        : config_(c), width_(c.real("width")), height_(c.real("height")),
+          speed_(c.real("wall_speed")),
+          start_time_(c.integer("equilibration_steps") * c.real("dt")) {}
+
+    void build(Simulation& sim) override {
+        sim_ = &sim;
+        Box box;
+        // Walls at z = 0 and z = height; the box reaches a little beyond so that a particle
+        // resting on a wall is still inside it.
+        box.lo = {0, 0, -0.5};
+        box.hi = {width_, width_, height_ + 0.5};
+        box.periodic[2] = false;
+        sim.set_box(box);
+        sim.set_species_masses({1.0});
+        sim.add_force(make_lennard_jones(1.0, 1.0, std::pow(2.0, 1.0 / 6.0)));
+        const double kT = config_.real("wall_temperature");
+        const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
+        WallMotion bottom_motion, top_motion;
+        bottom_motion.velocity = {-0.5 * speed_, 0, 0};
+        top_motion.velocity = {0.5 * speed_, 0, 0};
+        bottom_ = sim.add_boundary(
+            make_thermal_wall(WallShape::plane(2, 0.0, +1), kT, seed + 21, bottom_motion));
+        top_ = sim.add_boundary(
+            make_thermal_wall(WallShape::plane(2, height_, -1), kT, seed + 22, top_motion));
+    }
+
+    void place_particles(Simulation& sim) override {
+        // Whole lattice planes across the periodic directions; N = density x volume.
+        const auto target = static_cast<std::int64_t>(
+            std::llround(config_.real("density") * width_ * width_ * height_));
+        const bool periodic[3] = {true, true, false};
+        fill_lattice_with_count(sim, {0, 0, 0}, {width_, width_, height_}, target, periodic,
+                                [](const Vec3&) { return true; });
+        const double t0 = config_.real("initial_temperature");
+        sim.assign_thermal_velocities(t0 > 0 ? t0 : config_.real("wall_temperature"),
+                                      static_cast<std::uint64_t>(config_.integer("seed")));
+        // Start from the linear profile the walls impose, to skip most of the start-up.
+        ParticleStore& s = sim.particles();
+        for (std::size_t i = 0; i < s.n_owned(); ++i)
+            s.velocity[i].x += speed_ * (s.position[i].z / height_ - 0.5);
+    }
+
+    std::vector<FieldGrid> field_grids(const Simulation&) const override {
+        FieldGrid g;
+        g.name = "profile";
+        g.n = {1, 1, static_cast<int>(config_.integer("slabs"))};
+        g.lo = {0, 0, 0};
+        g.hi = {width_, width_, height_};
+        return {g};
+    }
+
+    Measures analyse_fields(const FieldGrid& grid, const FieldFrame& f) override {
+        const int n = grid.n.z;
+        const double dz = height_ / n;
+        // Least-squares line v_x = a + b z through the middle half of the channel, weighted by
+        // the samples per slab; the layers next to the walls are structured and slip.
+        double sw = 0, sz = 0, sv = 0, szz = 0, szv = 0, density = 0, temperature = 0;
+        int middle = 0;
+        for (int k = n / 4; k < n - n / 4; ++k) {
+            const double z = (k + 0.5) * dz, w = f.count[k], v = f.velocity[3 * k];
+            sw += w, sz += w * z, sv += w * v, szz += w * z * z, szv += w * z * v;
+            density += f.density[k], temperature += f.temperature[k], ++middle;
+        }
+        const double rate = (sw * szv - sz * sv) / (sw * szz - sz * sz);
+        const double offset = (sv - rate * sz) / sw;
+        density /= middle, temperature /= middle;
+        // Momentum the walls gave the fluid during this frame's interval.
+        const WallExchange top = sim_->global_exchange(*top_), bottom = sim_->global_exchange(*bottom_);
+        const double interval = sim_->time() - last_time_;
+        const double stress =
+            0.5 * ((top.momentum.x - last_top_) - (bottom.momentum.x - last_bottom_)) /
+            (width_ * width_ * interval);
+        last_top_ = top.momentum.x, last_bottom_ = bottom.momentum.x, last_time_ = sim_->time();
+        // Slip: how far the fluid at the wall lags the wall, in units of the gradient.
+        const double slip = (0.5 * speed_ - (offset + rate * height_)) / rate;
+        if (sim_->time() > start_time_ + 1e-9) {
+            stress_.add(stress), rate_.add(rate), density_.add(density);
+            temperature_.add(temperature), slip_.add(slip);
+        }
+        return {{"shear_rate", {rate}}, {"shear_stress", {stress}}, {"centre_density", {density}},
+                {"centre_temperature", {temperature}}, {"slip_length", {slip}}};
+    }
+
+    Measures measures(Simulation&) override {
+        if (stress_.samples().size() < 2) return {};
+        // eta = <stress> / <rate>; errors of the two block averages combined in quadrature.
+        const double s = stress_.mean(), g = rate_.mean(), rho = density_.mean();
+        const double eta = s / g;
+        const double rel = std::hypot(stress_.standard_error() / s, rate_.standard_error() / g);
+        return {{"viscosity", {eta, std::fabs(eta) * rel}},
+                {"kinematic_viscosity", {eta / rho, std::fabs(eta / rho) * rel}},
+                {"mean_shear_rate", {g, rate_.standard_error()}},
+                {"mean_centre_density", {rho, density_.standard_error()}},
+                {"mean_centre_temperature", {temperature_.mean(), temperature_.standard_error()}},
+                {"mean_slip_length", {slip_.mean(), slip_.standard_error()}}};
+    }
+
+private:
+    Config config_;
+    double width_, height_, speed_, start_time_;
+    Simulation* sim_ = nullptr;
+    BoundaryRule *bottom_ = nullptr, *top_ = nullptr;
+    double last_top_ = 0, last_bottom_ = 0, last_time_ = 0;
+    BlockAverage stress_{10}, rate_{10}, density_{10}, temperature_{10}, slip_{10};
+};
+
+ProblemInfo planar_couette_info() {
+    ProblemInfo info;
+    info.name = "planar-couette";
+    info.description = "WCA fluid sheared between thermal walls: measures the shear viscosity";
+    info.schema = run_schema();
+    info.schema
+        .real("width", 15.245, 2, 1e4, "sigma",
+              "periodic box edge in x and y (15.245: 12 lattice cells at density 0.488)", true)
+        .real("height", 20.327, 4, 1e4, "sigma",
+              "distance between the walls, z (20.327: 16 lattice cells at density 0.488)", true)
+        .real("density", 0.488, 0, 1.2, "sigma^-3",
+              "lattice number density at the start (the measured centre density is reported)", true)
+        .real("wall_temperature", 1.0, 0, 1e4, "epsilon/k_B", "temperature of both walls", true)
+        .real("initial_temperature", 0, 0, 1e4, "epsilon/k_B",
+              "temperature of the initial velocities (0: the wall temperature)")
+        .real("wall_speed", 3.0, 0, 1e3, "sigma/tau",
+              "relative speed of the walls (each moves at half of it, opposite ways)")
+        .integer("slabs", 20, 4, 100000, "1", "slabs of the flow profile across the channel");
+    // Field frames carry the analysis: every run of this scene needs them.
+    info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10");
+    info.presets["tiny"] = {{"width", "8"}, {"height", "10"}, {"equilibration_steps", "400"},
+                            {"steps", "1600"}, {"sample_every", "400"}, {"fields.interval", "400"},
+                            {"slabs", "10"}};
+    info.presets["small"] = {{"equilibration_steps", "20000"}, {"steps", "200000"},
+                             {"sample_every", "10000"}, {"fields.interval", "5000"}};
+    info.factory = [](const Config& c) { return std::make_unique<PlanarCouette>(c); };
+    return info;
+}
+
+}  // namespace
+
+EMERGENT_REGISTER_PROBLEM(planar_couette_info);
+
+}  // namespace emergent::problems

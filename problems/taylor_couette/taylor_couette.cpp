@@ -1,0 +1,271 @@
+// SPDX-License-Identifier: MIT
+// Scene `taylor-couette`: a WCA fluid in the gap between coaxial cylinders, the inner one
+// rotating; thermal non-slip walls, elastic (or periodic) ends, one wedge of the annulus with
+// rotational periodic images (paper: a quadrant). Taylor vortices appear above Ta_c.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "emergent/error.hpp"
+#include "emergent/flow_analysis.hpp"
+#include "emergent/lattice.hpp"
+#include "emergent/problem.hpp"
+#include "emergent/simulation.hpp"
+
+namespace emergent::problems {
+
+namespace {
+
+constexpr double kTwoPi = 6.283185307179586;
+
+/// Critical Reynolds number (Re = omega r_i d / nu, outer cylinder at rest) from linear
+/// stability for radius ratio eta; 0 outside the tabulated range. Re_c sqrt(1 - eta) varies
+/// slowly and smoothly with eta, so it is interpolated linearly between the tabulated ratios:
+/// 0.5 and 0.95 from Recktenwald, Luecke & Mueller, Phys. Rev. E 48, 4444 (1993); 2/3 and 5/7
+/// as used for the paper's two systems (76.3 and 81.1).
+double critical_reynolds(double eta) {
+    const double table[][2] = {{0.5, 68.19}, {2.0 / 3.0, 76.3}, {5.0 / 7.0, 81.1}, {0.95, 184.99}};
+    const int n = sizeof(table) / sizeof(table[0]);
+    if (eta < table[0][0] - 1e-12 || eta > table[n - 1][0] + 1e-12) return 0;
+    for (int k = 0; k + 1 < n; ++k) {
+        const double e0 = table[k][0], e1 = table[k + 1][0];
+        if (eta > e1 + 1e-12) continue;
+        const double f0 = table[k][1] * std::sqrt(1 - e0), f1 = table[k + 1][1] * std::sqrt(1 - e1);
+        const double w = std::clamp((eta - e0) / (e1 - e0), 0.0, 1.0);
+        return (f0 + w * (f1 - f0)) / std::sqrt(1 - eta);
+    }
+    return table[n - 1][1];
+}
+
+class TaylorCouette final : public Problem {
+public:
+    explicit TaylorCouette(const Config& c)
+        : config_(c), r_i_(c.real("r_inner")), r_o_(c.real("r_inner") + c.real("gap")),
+          length_(c.real("length")), omega_(c.real("omega")),
+          wedge_n_(static_cast<int>(c.integer("wedge"))),
+          periodic_ends_(c.text("ends") == "periodic") {
+        const double nu = c.real("kinematic_viscosity");
+        const double eta = r_i_ / r_o_, d = r_o_ - r_i_;
+        reynolds_ = omega_ * r_i_ * d / nu;
+        const double re_c = c.real("critical_reynolds") > 0 ? c.real("critical_reynolds")
+                                                            : critical_reynolds(eta);
+        if (!(re_c > 0))
+            throw InputError(c.scene() + ": no tabulated critical Reynolds number for r_inner/r_outer = " +
+                             std::to_string(eta) + " (0.5 to 0.95); set critical_reynolds");
+        const double geometry = 4 * d / (r_o_ + r_i_);
+        taylor_ = geometry * reynolds_ * reynolds_;
+        taylor_critical_ = geometry * re_c * re_c;
+        reynolds_critical_ = re_c;
+    }
+
+    void build(Simulation& sim) override {
+        sim_ = &sim;
+        Box box;
+        const double margin = 0.5;  // the box reaches past the walls: particles on a wall are inside
+        if (wedge_n_ >= 2) {
+            box.wedge.n = wedge_n_;
+            // Bounding box of the sector 0 <= theta <= 2 pi / n of radius r_o, and the axis.
+            Vec3 lo{0, 0, 0}, hi{0, 0, 0};
+            const double alpha = kTwoPi / wedge_n_;
+            for (int k = 0; k <= 720; ++k) {
+                const double t = alpha * k / 720;
+                lo.x = std::min(lo.x, r_o_ * std::cos(t)), hi.x = std::max(hi.x, r_o_ * std::cos(t));
+                lo.y = std::min(lo.y, r_o_ * std::sin(t)), hi.y = std::max(hi.y, r_o_ * std::sin(t));
+            }
+            for (const double extreme : {0.0, 0.25, 0.5, 0.75})  // the arc's axis crossings
+                if (extreme * kTwoPi <= alpha + 1e-12) {
+                    const double t = extreme * kTwoPi;
+                    lo.x = std::min(lo.x, r_o_ * std::cos(t)), hi.x = std::max(hi.x, r_o_ * std::cos(t));
+                    lo.y = std::min(lo.y, r_o_ * std::sin(t)), hi.y = std::max(hi.y, r_o_ * std::sin(t));
+                }
+            // A cut face on a box face stays exactly there (x = 0 for the quadrant): the turned
+            // images must land outside the domain, in the ghost shell.
+            auto pad = [&](double v, double sign) { return std::fabs(v) < 1e-9 ? 0.0 : v + sign * margin; };
+            box.lo = {pad(lo.x, -1), pad(lo.y, -1), 0};
+            box.hi = {pad(hi.x, +1), pad(hi.y, +1), length_};
+        } else {
+            box.lo = {-r_o_ - margin, -r_o_ - margin, 0};
+            box.hi = {r_o_ + margin, r_o_ + margin, length_};
+        }
+        box.periodic[0] = box.periodic[1] = false;
+        box.periodic[2] = periodic_ends_;
+        if (!periodic_ends_) box.lo.z = -margin, box.hi.z = length_ + margin;
+        // The wedge's images turn x into y: only the axis is split between ranks.
+        const bool split[3] = {false, false, true};
+        sim.set_box(box, split);
+        sim.set_species_masses({1.0});
+        sim.add_force(make_lennard_jones(1.0, 1.0, std::pow(2.0, 1.0 / 6.0)));
+
+        const double kT = config_.real("wall_temperature");
+        const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
+        WallMotion spin;
+        spin.omega = omega_;
+        inner_ = sim.add_boundary(
+            make_thermal_wall(WallShape::cylinder(2, {0, 0, 0}, r_i_, +1), kT, seed + 31, spin));
+        outer_ = sim.add_boundary(
+            make_thermal_wall(WallShape::cylinder(2, {0, 0, 0}, r_o_, -1), kT, seed + 32));
+        if (!periodic_ends_) {
+            sim.add_boundary(make_specular_wall(WallShape::plane(2, 0.0, +1)));
+            sim.add_boundary(make_specular_wall(WallShape::plane(2, length_, -1)));
+        }
+    }
+
+    void place_particles(Simulation& sim) override {
+        const Wedge wedge = sim.box().wedge;
+        const double r_min = r_i_ + 0.5, r_max = r_o_ - 0.5;
+        auto inside = [&](const Vec3& x) {
+            const double r = std::hypot(x.x, x.y);
+            return r >= r_min && r <= r_max && (!wedge.active() || wedge.turns_into(x) == 0);
+        };
+        // N = density x the fluid's volume (the wedge's share of the annulus).
+        const double angle = wedge.active() ? wedge.angle() : kTwoPi;
+        const double volume = 0.5 * angle * (r_o_ * r_o_ - r_i_ * r_i_) * length_;
+        const auto target = static_cast<std::int64_t>(std::llround(config_.real("density") * volume));
+        const bool periodic[3] = {false, false, periodic_ends_};
+        fill_lattice_with_count(sim, {-r_o_, -r_o_, 0}, {r_o_, r_o_, length_}, target, periodic, inside);
+        const double t0 = config_.real("initial_temperature");
+        sim.assign_thermal_velocities(t0 > 0 ? t0 : config_.real("wall_temperature"),
+                                      static_cast<std::uint64_t>(config_.integer("seed")));
+        if (config_.text("initial_flow") == "couette") {
+            // Circular Couette flow v_theta = A r + B / r, so the run starts where spin-up ends.
+            const double eta = r_i_ / r_o_;
+            const double A = -omega_ * eta * eta / (1 - eta * eta);
+            const double B = omega_ * r_i_ * r_i_ / (1 - eta * eta);
+            ParticleStore& s = sim.particles();
+            for (std::size_t i = 0; i < s.n_owned(); ++i) {
+                const Vec3& x = s.position[i];
+                const double r = std::hypot(x.x, x.y), v = A * r + B / r;
+                s.velocity[i] += Vec3{-v * x.y / r, v * x.x / r, 0};
+            }
+        }
+    }
+
+    std::vector<FieldGrid> field_grids(const Simulation&) const override {
+        FieldGrid g;
+        g.name = "flow";
+        g.kind = FieldGrid::Kind::Cylindrical;
+        g.axis = 2;
+        g.lo = {0, 0, 0};
+        g.hi = {0, 0, length_};
+        g.r_min = r_i_;
+        g.r_max = r_o_;
+        g.theta_min = 0;
+        g.theta_max = wedge_n_ >= 2 ? kTwoPi / wedge_n_ : kTwoPi;
+        g.n = {static_cast<int>(config_.integer("flow_cells_r")), 1,
+               static_cast<int>(config_.integer("flow_cells_z"))};
+        return {g};
+    }
+
+    Measures measures(Simulation& sim) override {
+        const ThermoSample t = sim.measure();
+        const WallExchange in = sim.global_exchange(*inner_), out = sim.global_exchange(*outer_);
+        return {{"revolutions", {omega_ * sim.time() / kTwoPi}},
+                {"fluid_angular_momentum", {t.angular_momentum.z}},
+                {"inner_wall_exchange", {double(in.hits), in.angular_momentum, in.energy}},
+                {"outer_wall_exchange", {double(out.hits), out.angular_momentum, out.energy}},
+                {"reynolds", {reynolds_}},
+                {"taylor", {taylor_}},
+                {"taylor_critical", {taylor_critical_}},
+                {"taylor_over_critical", {taylor_ / taylor_critical_}}};
+    }
+
+    Measures analyse_fields(const FieldGrid& grid, const FieldFrame& f) override {
+        const int nr = grid.n.x, nz = grid.n.z;
+        // Radial flow at mid-gap: the middle radial cell, or the two middle ones.
+        const int r0 = (nr - 1) / 2, r1 = nr / 2;
+        const double inefficiency = config_.real("velocity_sample_inefficiency");
+        std::vector<double> vr(nz), noise(nz);
+        for (int k = 0; k < nz; ++k) {
+            double sum = 0, samples = 0, t = 0;
+            for (int r = r0; r <= r1; ++r) {
+                const int c = k * nr + r;  // n_theta = 1
+                sum += f.count[c] * f.velocity[3 * c];
+                samples += f.count[c];
+                t += f.count[c] * f.temperature[c];
+            }
+            vr[k] = samples > 0 ? sum / samples : 0.0;
+            // Standard error of a cell's mean flow: kT/m over the samples, which are correlated
+            // in time (their effective number is samples / inefficiency).
+            noise[k] = samples > 1 ? std::sqrt(inefficiency * (t / samples) / samples) : 0.0;
+        }
+        const double dz = length_ / nz;
+        const RollCensus census = count_rolls(vr, noise, 0.5 * dz, dz);
+        const DominantMode mode = dominant_mode(vr, length_, periodic_ends_);
+        std::vector<double> centres(nz, std::numeric_limits<double>::quiet_NaN());
+        std::copy(census.centres.begin(), census.centres.end(), centres.begin());
+        double rms = 0;
+        for (double v : vr) rms += v * v;
+        return {{"radial_velocity_midgap", vr},
+                {"radial_velocity_noise", noise},
+                {"vortex_count", {double(census.count)}},
+                {"vortex_centres", centres},
+                {"axial_mode", {double(mode.index), mode.wavelength, mode.amplitude}},
+                {"radial_velocity_rms", {std::sqrt(rms / nz)}}};
+    }
+
+private:
+    Config config_;
+    double r_i_, r_o_, length_, omega_;
+    int wedge_n_;
+    bool periodic_ends_;
+    double reynolds_ = 0, taylor_ = 0, taylor_critical_ = 0, reynolds_critical_ = 0;
+    Simulation* sim_ = nullptr;
+    BoundaryRule *inner_ = nullptr, *outer_ = nullptr;
+};
+
+ProblemInfo taylor_couette_info() {
+    ProblemInfo info;
+    info.name = "taylor-couette";
+    info.description = "WCA fluid between coaxial cylinders, inner rotating: Taylor vortices";
+    info.schema = run_schema();
+    info.schema.real("r_inner", 50, 1, 1e5, "sigma", "inner cylinder radius", true)
+        .real("gap", 25, 2, 1e5, "sigma", "gap d = r_outer - r_inner", true)
+        .real("length", 100, 2, 1e6, "sigma", "cylinder length (axis z)", true)
+        .real("omega", 0.1, 0, 10, "1/tau", "angular velocity of the inner cylinder")
+        .real("density", 0.488, 0, 1.2, "sigma^-3",
+              "number density of the initial lattice; 0.488 = the paper's N/V: 1.2e5 atoms in "
+              "the quadrant of r_i=50, d=25, L=100 (V = 2.454e5), or 2.35e6 in r_i=100, d=40, "
+              "L=640 (V = 4.825e6)", true)
+        .real("wall_temperature", 1.0, 0, 1e4, "epsilon/k_B", "temperature of both cylinders", true)
+        .real("initial_temperature", 0, 0, 1e4, "epsilon/k_B",
+              "temperature of the initial velocities (0: the wall temperature)")
+        .integer("wedge", 4, 1, 64, "1",
+                 "simulate the wedge 2 pi / n with rotational images (4: the paper's quadrant; "
+                 "1: the full annulus)")
+        .choice("ends", "reflecting", {"reflecting", "periodic"},
+                "cylinder ends: elastic (specular) caps, or periodic along the axis")
+        .choice("initial_flow", "couette", {"couette", "rest"},
+                "start with the laminar circular Couette profile, or with the fluid at rest")
+        .real("kinematic_viscosity", 1.0, 0, 1e6, "sigma^2/tau",
+              "nu of the fluid at the run's state, for Re and Ta (measured by planar-couette; "
+              "see benchmarks/RESULTS.md)", true)
+        .real("critical_reynolds", 0, 0, 1e6, "1",
+              "Re_c for the radius ratio (0: from the linear-stability table, eta 0.5 to 0.95)")
+        .integer("flow_cells_r", 10, 1, 100000, "1", "radial cells of the flow grid")
+        .integer("flow_cells_z", 40, 1, 1000000, "1", "axial cells of the flow grid")
+        .real("velocity_sample_inefficiency", 4, 1, 1e6, "1",
+              "samples per independent velocity sample in a field cell (sets the noise level "
+              "the vortex census compares with)", true);
+    info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10");
+    info.presets["tiny"] = {{"r_inner", "10"}, {"gap", "5"}, {"length", "10"}, {"omega", "0.2"},
+                            {"equilibration_steps", "0"}, {"steps", "400"},
+                            {"sample_every", "100"}, {"fields.interval", "200"},
+                            {"flow_cells_r", "5"}, {"flow_cells_z", "5"}};
+    // The paper's small system: ~1e4 steps per revolution; vortices within ~10 revolutions.
+    info.presets["small"] = {{"equilibration_steps", "0"}, {"steps", "150000"},
+                             {"sample_every", "1000"}, {"fields.interval", "5000"},
+                             {"progress_interval", "30"}};
+    info.presets["paper"] = {{"r_inner", "100"}, {"gap", "40"}, {"length", "640"},
+                             {"omega", "0.04"}, {"equilibration_steps", "0"},
+                             {"steps", "19000000"}, {"sample_every", "10000"},
+                             {"fields.interval", "20000"}, {"flow_cells_r", "16"},
+                             {"flow_cells_z", "256"}, {"output.every", "1000000"}};
+    info.factory = [](const Config& c) { return std::make_unique<TaylorCouette>(c); };
+    return info;
+}
+
+}  // namespace
+
+EMERGENT_REGISTER_PROBLEM(taylor_couette_info);
+
+}  // namespace emergent::problems

@@ -1,0 +1,83 @@
+// SPDX-License-Identifier: MIT
+// Lattice filling.
+#include "emergent/lattice.hpp"
+
+#include <cmath>
+#include <cstdlib>
+
+#include "emergent/simulation.hpp"
+
+namespace emergent {
+
+namespace {
+template <class Visit>
+void for_each_point(const Vec3& lo, const Vec3& hi, const Vec3& spacing, Visit&& visit) {
+    int n[3];
+    // A hair of tolerance: a tiling spacing must give exactly length / spacing cells.
+    for (int d = 0; d < 3; ++d)
+        n[d] = static_cast<int>(std::floor((hi[d] - lo[d]) / spacing[d] * (1 + 1e-12)));
+    for (int k = 0; k < n[2]; ++k)
+        for (int j = 0; j < n[1]; ++j)
+            for (int i = 0; i < n[0]; ++i)
+                visit(lo + Vec3{spacing.x * (i + 0.5), spacing.y * (j + 0.5), spacing.z * (k + 0.5)});
+}
+
+Vec3 spacing_for(double a, const Vec3& lo, const Vec3& hi, const bool periodic[3]) {
+    Vec3 s{a, a, a};
+    for (int d = 0; d < 3; ++d)
+        if (periodic[d]) s[d] = tiling_spacing(hi[d] - lo[d], a);
+    return s;
+}
+}  // namespace
+
+std::int64_t count_cubic_lattice(const Vec3& lo, const Vec3& hi, const Vec3& spacing,
+                                 const std::function<bool(const Vec3&)>& inside) {
+    std::int64_t count = 0;
+    for_each_point(lo, hi, spacing, [&](const Vec3& x) { count += inside(x) ? 1 : 0; });
+    return count;
+}
+
+std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3& hi,
+                                     std::int64_t target, const bool periodic[3],
+                                     const std::function<bool(const Vec3&)>& inside) {
+    // The count falls in steps as the spacing grows: bracket the target, then bisect, and
+    // keep the spacing whose count came closest.
+    const Vec3 l = hi - lo;
+    auto count = [&](double a) {
+        return count_cubic_lattice(lo, hi, spacing_for(a, lo, hi, periodic), inside);
+    };
+    double a = std::cbrt(l.x * l.y * l.z / std::max<std::int64_t>(target, 1));
+    double dense = a, sparse = a;  // count(dense) >= target > count(sparse)
+    while (count(dense) < target && dense > 1e-3 * a) dense *= 0.9;
+    while (count(sparse) >= target && sparse < 1e3 * a) sparse *= 1.1;
+    double best_a = dense;
+    std::int64_t best = count(dense);
+    for (int k = 0; k < 40 && std::llabs(best - target) > target / 1000; ++k) {
+        const double mid = 0.5 * (dense + sparse);
+        const std::int64_t n = count(mid);
+        if (std::llabs(n - target) < std::llabs(best - target)) best = n, best_a = mid;
+        (n >= target ? dense : sparse) = mid;
+    }
+    return fill_cubic_lattice(sim, lo, hi, spacing_for(best_a, lo, hi, periodic), inside);
+}
+
+std::int64_t fill_cubic_lattice(Simulation& sim, const Vec3& lo, const Vec3& hi, const Vec3& spacing,
+                                const std::function<bool(const Vec3&)>& inside,
+                                std::int64_t first_id) {
+    int n[3];
+    // A hair of tolerance: a tiling spacing must give exactly length / spacing cells.
+    for (int d = 0; d < 3; ++d)
+        n[d] = static_cast<int>(std::floor((hi[d] - lo[d]) / spacing[d] * (1 + 1e-12)));
+    std::int64_t id = first_id;
+    for (int k = 0; k < n[2]; ++k)
+        for (int j = 0; j < n[1]; ++j)
+            for (int i = 0; i < n[0]; ++i) {
+                const Vec3 x = lo + Vec3{spacing.x * (i + 0.5), spacing.y * (j + 0.5),
+                                         spacing.z * (k + 0.5)};
+                if (!inside(x)) continue;
+                sim.add_particle(x, {0, 0, 0}, 0, id++);
+            }
+    return id - first_id;
+}
+
+}  // namespace emergent
