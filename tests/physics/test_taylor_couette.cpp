@@ -1,0 +1,301 @@
+// SPDX-License-Identifier: MIT
+// Thermal walls, rotational wedge images and the taylor-couette scene (tiny preset), each
+// against an independent reference: conservation laws, exact geometry, circular Couette flow,
+// the full annulus, and the same run on another rank count.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <array>
+#include <map>
+
+#include "emergent/problem.hpp"
+#include "emergent/simulation.hpp"
+#include "observe/field_accumulator.hpp"
+#include "support/scene_fixture.hpp"
+
+using namespace emergent;
+using emergent::testing::make_scene;
+using emergent::testing::scene_config;
+
+namespace {
+
+const std::vector<std::string> kTiny = {"r_inner=10", "gap=5", "length=10", "omega=0.2"};
+
+std::vector<std::string> tiny(std::vector<std::string> extra = {}) {
+    std::vector<std::string> s = kTiny;
+    s.insert(s.end(), extra.begin(), extra.end());
+    return s;
+}
+
+/// The scene, built and initialised, with the problem kept (for its field grids).
+struct Scene {
+    std::unique_ptr<Problem> problem;
+    std::unique_ptr<Simulation> sim;
+};
+
+Scene build_scene(MPI_Comm comm, const std::vector<std::string>& sets) {
+    const Config config = scene_config("taylor-couette", sets);
+    RunSettings settings;
+    settings.dt = config.real("dt");
+    settings.skin = config.real("skin");
+    Scene s;
+    s.sim = std::make_unique<Simulation>(comm, settings);
+    s.problem = ProblemRegistry::instance().find("taylor-couette")->factory(config);
+    s.problem->build(*s.sim);
+    s.problem->place_particles(*s.sim);
+    s.sim->initialise();
+    return s;
+}
+
+/// (id -> position) of every particle on every rank.
+std::map<std::int64_t, Vec3> gather_positions(const Simulation& sim) {
+    const ParticleStore& s = sim.particles();
+    std::vector<double> mine;
+    for (std::size_t i = 0; i < s.n_owned(); ++i)
+        mine.insert(mine.end(), {double(s.id[i]), s.position[i].x, s.position[i].y, s.position[i].z});
+    int n = static_cast<int>(mine.size()), ranks = 1;
+    MPI_Comm_size(sim.comm(), &ranks);
+    std::vector<int> counts(ranks), offsets(ranks, 0);
+    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm());
+    for (int r = 1; r < ranks; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
+    std::vector<double> all(offsets.back() + counts.back());
+    MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
+                   MPI_DOUBLE, sim.comm());
+    std::map<std::int64_t, Vec3> out;
+    for (std::size_t k = 0; k < all.size(); k += 4)
+        out[static_cast<std::int64_t>(all[k])] = {all[k + 1], all[k + 2], all[k + 3]};
+    return out;
+}
+
+}  // namespace
+
+TEST(TaylorCouette, AngularMomentumChangesOnlyByTheWallTorques) {
+    // Pair forces are central and the wedge images turn positions and velocities together, so
+    // L_z of the fluid changes only through the walls (end caps push along z and exert no
+    // torque). Velocity Verlet conserves L_z exactly for central forces, so the balance holds
+    // to round-off: 1e-9 of the angular momentum exchanged.
+    Scene s = build_scene(MPI_COMM_WORLD, tiny());
+    Simulation& sim = *s.sim;
+    const double l0 = sim.measure().angular_momentum.z;
+    for (int k = 0; k < 1000; ++k) sim.step(false);
+    const double l1 = sim.measure().angular_momentum.z;
+    double exchanged = 0, scale = 0;
+    const Measures m = s.problem->measures(sim);
+    for (const auto& [name, value] : m)
+        if (name == "inner_wall_exchange" || name == "outer_wall_exchange") {
+            exchanged += value[1];
+            scale += std::fabs(value[1]);
+            EXPECT_GT(value[0], 0) << name << ": no hits in 1000 steps";
+        }
+    ASSERT_GT(scale, 1.0);
+    EXPECT_NEAR(l1 - l0, exchanged, 1e-9 * (scale + std::fabs(l0)));
+}
+
+TEST(TaylorCouette, NoParticleLeavesTheFluid) {
+    Scene s = build_scene(MPI_COMM_WORLD, tiny({"omega=0.5"}));
+    Simulation& sim = *s.sim;
+    const Wedge wedge = sim.box().wedge;
+    for (int block = 0; block < 10; ++block) {
+        for (int k = 0; k < 200; ++k) sim.step(false);
+        const ParticleStore& p = sim.particles();
+        for (std::size_t i = 0; i < p.n_owned(); ++i) {
+            const Vec3& x = p.position[i];
+            const double r = std::hypot(x.x, x.y);
+            ASSERT_GE(r, 10.0) << "id " << p.id[i];
+            ASSERT_LE(r, 15.0) << "id " << p.id[i];
+            ASSERT_GE(x.z, 0.0);
+            ASSERT_LE(x.z, 10.0);
+            // Between list builds a particle may sit past a cut face (it is turned back at
+            // the next build, like a periodic wrap), never by more than half the skin.
+            if (wedge.turns_into(x) != 0)
+                ASSERT_LT(std::min(Wedge::distance_to_first_face(x), wedge.distance_to_second_face(x)),
+                          0.15 + 1e-12) << "id " << p.id[i] << " outside the wedge";
+        }
+    }
+}
+
+TEST(TaylorCouette, ThermalWallsBringTheFluidToTheirTemperature) {
+    // Cylinders at rest at T = 1, fluid started at T = 2: it must cool to 1. The wall draws
+    // speeds that are in detailed balance with a fluid at its temperature, so the final mean
+    // is T_wall within the sampling error (N ~ 470: one sample scatters by T sqrt(2 / 3N) =
+    // 0.04, and the energy exchanged with the walls is slow, so samples are correlated for
+    // ~10 time units; a 60000-step run gave 0.998 +- 0.004, so 100 time units give about
+    // +- 0.008: the 0.03 bound is near 4 standard errors).
+    Scene s = build_scene(MPI_COMM_WORLD, tiny({"omega=0", "initial_flow=rest",
+                                                "initial_temperature=2"}));
+    Simulation& sim = *s.sim;
+    EXPECT_NEAR(sim.measure().temperature, 2.0, 0.05);
+    for (int k = 0; k < 6000; ++k) sim.step(false);  // many thermal diffusion times d^2 / D_T
+    double sum = 0;
+    for (int k = 0; k < 200; ++k) {
+        for (int j = 0; j < 100; ++j) sim.step(false);
+        sum += sim.measure().temperature;
+    }
+    EXPECT_NEAR(sum / 200, 1.0, 0.03);
+}
+
+TEST(TaylorCouette, WedgeImagesAreExactRotationsOfTheirOwners) {
+    // Single rank, closed ends: every ghost is a wedge image, turned by exactly +-90 degrees
+    // (quarter turns are exact in floating point) from an owned particle, and every owned
+    // particle within cutoff + skin of a cut face has its image there.
+    Scene s = build_scene(MPI_COMM_SELF, tiny());
+    for (int k = 0; k < 200; ++k) s.sim->step(false);  // disordered, some beyond the faces
+    const ParticleStore& p = s.sim->particles();
+    const Wedge wedge = s.sim->box().wedge;
+    const double width = std::pow(2.0, 1.0 / 6.0) + 0.3;  // WCA cutoff + default skin
+    auto key = [](const Vec3& x) { return std::array<double, 3>{x.x, x.y, x.z}; };
+    std::map<std::array<double, 3>, int> images;
+    std::size_t expected = 0;
+    // The images were made from the positions of the last list build.
+    const std::vector<Vec3>& built = s.sim->list_reference_positions();
+    for (std::size_t i = 0; i < p.n_owned(); ++i) {
+        if (Wedge::distance_to_first_face(built[i]) < width) ++images[key(wedge.rotate(built[i], 1))], ++expected;
+        if (wedge.distance_to_second_face(built[i]) < width) ++images[key(wedge.rotate(built[i], -1))], ++expected;
+    }
+    ASSERT_GT(expected, 0u);
+    ASSERT_EQ(p.n_ghost(), expected);
+    // Ghost positions now = image of the owner's current position (refreshed every step).
+    std::map<std::array<double, 3>, int> now;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) {
+        if (Wedge::distance_to_first_face(built[i]) < width) ++now[key(wedge.rotate(p.position[i], 1))];
+        if (wedge.distance_to_second_face(built[i]) < width) ++now[key(wedge.rotate(p.position[i], -1))];
+    }
+    for (std::size_t g = p.n_owned(); g < p.size(); ++g)
+        EXPECT_GT(now[key(p.position[g])]--, 0) << "ghost at " << p.position[g].x << " "
+                                                << p.position[g].y << " " << p.position[g].z
+                                                << " is no exact image of an owned particle";
+    const Vec3 x{3.25, 7.5, 1.0};
+    EXPECT_EQ(wedge.rotate(x, -1).x, x.y);  // (x, y) turned by -90 degrees is (y, -x) exactly
+    EXPECT_EQ(wedge.rotate(x, -1).y, -x.x);
+}
+
+TEST(TaylorCouette, WedgeForcesEqualThoseOfTheFullAnnulus) {
+    // The full annulus filled with the wedge's particles and their three exact quarter turns:
+    // the force on each original particle must be what the wedge with its images computes.
+    Scene wedge = build_scene(MPI_COMM_SELF, tiny());
+    for (int k = 0; k < 200; ++k) wedge.sim->step(false);  // off the lattice: atoms in contact
+    const ParticleStore& w = wedge.sim->particles();
+    const Config config = scene_config("taylor-couette", tiny({"wedge=1"}));
+    RunSettings settings;
+    Simulation full(MPI_COMM_SELF, settings);
+    auto problem = ProblemRegistry::instance().find("taylor-couette")->factory(config);
+    problem->build(full);
+    const std::int64_t n = static_cast<std::int64_t>(w.n_owned());
+    for (int turn = 0; turn < 4; ++turn)
+        for (std::int64_t i = 0; i < n; ++i)
+            full.add_particle(wedge.sim->box().wedge.rotate(w.position[i], turn), {0, 0, 0}, 0,
+                              turn * n + w.id[i]);
+    full.initialise();
+    const ParticleStore& f = full.particles();
+    std::map<std::int64_t, Vec3> force;
+    for (std::size_t i = 0; i < f.n_owned(); ++i) force[f.id[i]] = f.force[i];
+    double worst = 0, largest = 0;
+    for (std::int64_t i = 0; i < n; ++i) {
+        const Vec3 d = force.at(w.id[i]) - w.force[i];
+        worst = std::max(worst, std::sqrt(dot(d, d)));
+        largest = std::max(largest, std::sqrt(dot(w.force[i], w.force[i])));
+    }
+    ASSERT_GT(largest, 1.0);
+    EXPECT_LT(worst, 1e-10 * largest);  // summation order differs: round-off only
+}
+
+TEST(TaylorCouette, SameTrajectoryOnAnyRankCount) {
+    // Split along the axis on the ranks of the test, and on one rank: after 300 steps the
+    // particles agree to round-off amplified by the fluid's chaos over 1.5 time units. The
+    // thermal walls' choices depend on the impact point only to 4e-9 relative, so round-off
+    // does not flip them.
+    Scene many = build_scene(MPI_COMM_WORLD, tiny());
+    Scene one = build_scene(MPI_COMM_SELF, tiny());
+    for (int k = 0; k < 300; ++k) many.sim->step(false), one.sim->step(false);
+    const auto a = gather_positions(*many.sim), b = gather_positions(*one.sim);
+    ASSERT_EQ(a.size(), b.size());
+    double worst = 0;
+    for (const auto& [id, x] : a) {
+        const Vec3 d = x - b.at(id);
+        worst = std::max(worst, std::sqrt(dot(d, d)));
+    }
+    EXPECT_LT(worst, 1e-8);
+}
+
+namespace {
+
+struct Profile {
+    std::vector<double> r, v_theta, v_r, se_theta, se_r;
+};
+
+/// Radial profiles of the mean flow, averaged along the axis, with standard errors from the
+/// scatter of 8 block averages (blocks of 2000 steps, longer than any flow correlation time).
+Profile laminar_profile(const std::vector<std::string>& sets) {
+    Scene s = build_scene(MPI_COMM_WORLD, sets);
+    Simulation& sim = *s.sim;
+    FieldGrid grid = s.problem->field_grids(sim).front();
+    grid.n = {5, 1, 1};
+    FieldAccumulator acc(grid);
+    for (int k = 0; k < 4000; ++k) sim.step(false);  // the initial density layering relaxes
+    const int blocks = 8;
+    std::vector<std::vector<double>> vt(grid.n.x), vr(grid.n.x);
+    for (int b = 0; b < blocks; ++b) {
+        for (int k = 1; k <= 2000; ++k) {
+            sim.step(false);
+            if (k % 10 == 0) acc.add(sim.particles(), sim.species_masses(), sim.box());
+        }
+        const FieldFrame f = acc.take(sim.comm());
+        for (int c = 0; c < grid.n.x; ++c) vt[c].push_back(f.velocity[3 * c + 1]), vr[c].push_back(f.velocity[3 * c]);
+    }
+    Profile p;
+    auto mean_se = [&](const std::vector<double>& x, double& m, double& se) {
+        m = 0;
+        for (double v : x) m += v / blocks;
+        double var = 0;
+        for (double v : x) var += (v - m) * (v - m) / (blocks - 1);
+        se = std::sqrt(var / blocks);
+    };
+    for (int c = 0; c < grid.n.x; ++c) {
+        double m, se;
+        p.r.push_back(grid.r_min + (c + 0.5) * (grid.r_max - grid.r_min) / grid.n.x);
+        mean_se(vt[c], m, se);
+        p.v_theta.push_back(m), p.se_theta.push_back(se);
+        mean_se(vr[c], m, se);
+        p.v_r.push_back(m), p.se_r.push_back(se);
+    }
+    return p;
+}
+
+}  // namespace
+
+TEST(TaylorCouette, LaminarFlowIsCircularCouetteFlowInWedgeAndFullAnnulus) {
+    // Re = 0.2 * 10 * 5 / nu ~ 10, far below onset: the flow must be circular Couette flow
+    // v_theta = A r + B / r (the Navier-Stokes solution for any wall speeds, so walls that
+    // slip change A and B but not the form), with no radial flow, and the wedge with its
+    // rotational images must give the same profile as the full annulus. Bounds: 4 standard
+    // errors of the block averages.
+    const Profile w = laminar_profile(tiny());
+    const Profile f = laminar_profile(tiny({"wedge=1"}));
+    // Weighted least squares for A and B on the wedge's profile.
+    double saa = 0, sab = 0, sbb = 0, sav = 0, sbv = 0;
+    for (std::size_t c = 0; c < w.r.size(); ++c) {
+        const double wt = 1 / (w.se_theta[c] * w.se_theta[c]), a = w.r[c], b = 1 / w.r[c];
+        saa += wt * a * a, sab += wt * a * b, sbb += wt * b * b;
+        sav += wt * a * w.v_theta[c], sbv += wt * b * w.v_theta[c];
+    }
+    const double det = saa * sbb - sab * sab;
+    const double A = (sav * sbb - sbv * sab) / det, B = (saa * sbv - sab * sav) / det;
+    for (std::size_t c = 0; c < w.r.size(); ++c) {
+        EXPECT_NEAR(w.v_theta[c], A * w.r[c] + B / w.r[c], 4 * w.se_theta[c]) << "r = " << w.r[c];
+        EXPECT_NEAR(w.v_r[c], 0.0, 4 * w.se_r[c] + 1e-3) << "r = " << w.r[c];
+        EXPECT_NEAR(w.v_theta[c], f.v_theta[c], 4 * std::hypot(w.se_theta[c], f.se_theta[c]))
+            << "r = " << w.r[c];
+    }
+    // Slip, stated: the fluid at the walls against the walls' speeds (2 inside, 0 outside).
+    const double inner = A * 10 + B / 10, outer = A * 15 + B / 15;
+    ::testing::Test::RecordProperty("fluid_speed_at_inner_wall", std::to_string(inner));
+    ::testing::Test::RecordProperty("fluid_speed_at_outer_wall", std::to_string(outer));
+    int rank = 0;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    if (rank == 0)
+        std::printf("laminar profile: fluid at the inner wall %.3f (wall 2.0), at the outer %.3f (wall 0)\n",
+                inner, outer);
+    // Effectively non-slip walls: most of the wall speed reaches the fluid in a gap of only 5.
+    EXPECT_GT(inner, 0.8 * 2.0);
+    EXPECT_LT(std::fabs(outer), 0.1 * 2.0);
+}
