@@ -15,7 +15,7 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change incompatibly.
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-1"
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-2"  // 2: Problem::measures, analyse_fields; Box::wedge
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \
