@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Throughput of the taylor-couette `small` preset (the paper's small system: quadrant of
+# r_i=50, d=25, L=100, ~1.2e5 WCA atoms, thermal walls, rotational images): 200 warm-up steps,
+# then 3000 timed steps, on each rank count, REPEATS runs interleaved; medians. Field
+# coarse-graining as in the preset (a sample every 10 steps) is included.
+# usage: benchmarks/taylor_couette_throughput.sh [REPEATS] [RANKS]    (defaults 3, "1 2")
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repeats=${1:-3}
+ranks_list=${2:-"1 2"}
+exe=$PWD/build/bin/emergent
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+for r in $(seq "$repeats"); do
+  for np in $ranks_list; do
+    mpirun -q --oversubscribe -np "$np" "$exe" run taylor-couette --preset small \
+      --set equilibration_steps=200 --set steps=3000 --set progress_interval=0 \
+      -o "$work/run" --summary-json "$work/s.json" >/dev/null
+    grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/r$np"
+    grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$np"
+    grep -o '"N": [0-9]*' "$work/s.json" | awk '{print $2}' >"$work/n"
+  done
+done
+printf '| ranks | atom-steps/s (N=%s) | steps/s | B/atom |\n|---|---|---|---|\n' "$(cat "$work/n")"
+for np in $ranks_list; do
+  rate=$(median <"$work/r$np")
+  printf '| %d | %.3g | %.0f | %.0f |\n' "$np" "$rate" "$(echo "$rate / $(cat "$work/n")" | bc -l)" \
+    "$(median <"$work/m$np")"
+done
