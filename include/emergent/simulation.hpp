@@ -79,6 +79,8 @@ public:
     /// Adds a boundary rule (applied after each drift, in the order added); the simulation
     /// keeps it, the scene may keep the returned pointer to read the rule's exchange.
     BoundaryRule* add_boundary(std::unique_ptr<BoundaryRule> rule);
+    /// The boundary rules, in the order added.
+    std::vector<const BoundaryRule*> boundary_rules() const;
     /// A rule's exchange summed over all ranks. Collective.
     WallExchange global_exchange(const BoundaryRule& rule) const;
     /// Keeps the particle if x lies in this rank's domain.

@@ -236,9 +236,10 @@ ProblemInfo taylor_couette_info() {
                 "cylinder ends: elastic (specular) caps, or periodic along the axis")
         .choice("initial_flow", "couette", {"couette", "rest"},
                 "start with the laminar circular Couette profile, or with the fluid at rest")
-        .real("kinematic_viscosity", 1.0, 0, 1e6, "sigma^2/tau",
-              "nu of the fluid at the run's state, for Re and Ta (measured by planar-couette; "
-              "see benchmarks/RESULTS.md)", true)
+        .real("kinematic_viscosity", 1.156, 0, 1e6, "sigma^2/tau",
+              "nu of the fluid at the run's state, for Re and Ta; 1.156 +- 0.026 is what "
+              "planar-couette measures at the small preset's mid-gap state (rho 0.444, T 2.1, "
+              "benchmarks/RESULTS.md); measure it anew for other states", true)
         .real("critical_reynolds", 0, 0, 1e6, "1",
               "Re_c for the radius ratio (0: from the linear-stability table, eta 0.5 to 0.95)")
         .integer("flow_cells_r", 10, 1, 100000, "1", "radial cells of the flow grid")

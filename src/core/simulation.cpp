@@ -237,6 +237,12 @@ BoundaryRule* Simulation::add_boundary(std::unique_ptr<BoundaryRule> rule) {
     return engine_->boundaries.back().get();
 }
 
+std::vector<const BoundaryRule*> Simulation::boundary_rules() const {
+    std::vector<const BoundaryRule*> rules;
+    for (const auto& rule : engine_->boundaries) rules.push_back(rule.get());
+    return rules;
+}
+
 WallExchange Simulation::global_exchange(const BoundaryRule& rule) const {
     const WallExchange& w = rule.exchange();
     double v[6] = {static_cast<double>(w.hits), w.momentum.x, w.momentum.y, w.momentum.z,

@@ -299,3 +299,29 @@ TEST(TaylorCouette, LaminarFlowIsCircularCouetteFlowInWedgeAndFullAnnulus) {
     EXPECT_GT(inner, 0.8 * 2.0);
     EXPECT_LT(std::fabs(outer), 0.1 * 2.0);
 }
+
+TEST(PlanarCouette, TheWallsAloneChangeTheFluidMomentum) {
+    // Pair forces are internal and x, y periodic: the fluid's momentum changes only by what the
+    // two thermal walls give it, which is what the viscosity measurement counts as stress.
+    // Exact up to round-off (1e-9 of the momentum exchanged).
+    const Config config = scene_config("planar-couette", {"width=8", "height=10"});
+    Simulation sim(MPI_COMM_WORLD, RunSettings{});
+    auto problem = ProblemRegistry::instance().find("planar-couette")->factory(config);
+    problem->build(sim);
+    problem->place_particles(sim);
+    sim.initialise();
+    const Vec3 p0 = sim.measure().momentum;
+    for (int k = 0; k < 2000; ++k) sim.step(false);
+    const Vec3 p1 = sim.measure().momentum;
+    Vec3 given{0, 0, 0};
+    double scale = 0;
+    for (const BoundaryRule* wall : sim.boundary_rules()) {
+        const WallExchange w = sim.global_exchange(*wall);
+        given += w.momentum;
+        scale += std::fabs(w.momentum.x);
+        EXPECT_GT(w.hits, 0);
+    }
+    ASSERT_EQ(sim.boundary_rules().size(), 2u);
+    ASSERT_GT(scale, 1.0);
+    for (int d = 0; d < 3; ++d) EXPECT_NEAR(p1[d] - p0[d], given[d], 1e-9 * scale) << "xyz"[d];
+}
