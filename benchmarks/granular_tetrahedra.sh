@@ -11,8 +11,7 @@ ranks_list=${2:-"1 2"}
 exe=$PWD/build/bin/emergent
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+. benchmarks/common.sh
 bed=(--set particles=tetrahedra --set nx=16 --set ny=16 --set nz=9 --set spacing=2.5 --set height=40)
 "$exe" run granular-bed "${bed[@]}" --set equilibration_steps=10000 --set steps=0 \
   --set progress_interval=0 --checkpoint-every 10000 -o "$work/settle" >/dev/null

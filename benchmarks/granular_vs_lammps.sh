@@ -16,8 +16,7 @@ ranks_list=${2:-"1 2"}
 exe=$PWD/build/bin/emergent
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+. benchmarks/common.sh
 rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
 n=19602
 # Settle once in each program (15 tau), then time 5000 steps after 200 warm-up steps.

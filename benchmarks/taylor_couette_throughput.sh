@@ -11,8 +11,7 @@ ranks_list=${2:-"1 2"}
 exe=$PWD/build/bin/emergent
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+. benchmarks/common.sh
 for r in $(seq "$repeats"); do
   for np in $ranks_list; do
     mpirun -q --oversubscribe -np "$np" "$exe" run taylor-couette --preset small \

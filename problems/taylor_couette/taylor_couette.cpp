@@ -55,29 +55,22 @@ public:
         const double geometry = 4 * d / (r_o_ + r_i_);
         taylor_ = geometry * reynolds_ * reynolds_;
         taylor_critical_ = geometry * re_c * re_c;
-        reynolds_critical_ = re_c;
     }
 
     void build(Simulation& sim) override {
-        sim_ = &sim;
         Box box;
         const double margin = 0.5;  // the box reaches past the walls: particles on a wall are inside
         if (wedge_n_ >= 2) {
             box.wedge.n = wedge_n_;
-            // Bounding box of the sector 0 <= theta <= 2 pi / n of radius r_o, and the axis.
+            // Bounding box of the sector 0 <= theta <= 2 pi / n of radius r_o: the axis, the
+            // arc's ends, and its crossings of the x and y axes.
             Vec3 lo{0, 0, 0}, hi{0, 0, 0};
             const double alpha = kTwoPi / wedge_n_;
-            for (int k = 0; k <= 720; ++k) {
-                const double t = alpha * k / 720;
+            for (const double t : {0.0, alpha, 0.25 * kTwoPi, 0.5 * kTwoPi, 0.75 * kTwoPi}) {
+                if (t > alpha + 1e-12) continue;
                 lo.x = std::min(lo.x, r_o_ * std::cos(t)), hi.x = std::max(hi.x, r_o_ * std::cos(t));
                 lo.y = std::min(lo.y, r_o_ * std::sin(t)), hi.y = std::max(hi.y, r_o_ * std::sin(t));
             }
-            for (const double extreme : {0.0, 0.25, 0.5, 0.75})  // the arc's axis crossings
-                if (extreme * kTwoPi <= alpha + 1e-12) {
-                    const double t = extreme * kTwoPi;
-                    lo.x = std::min(lo.x, r_o_ * std::cos(t)), hi.x = std::max(hi.x, r_o_ * std::cos(t));
-                    lo.y = std::min(lo.y, r_o_ * std::sin(t)), hi.y = std::max(hi.y, r_o_ * std::sin(t));
-                }
             // A cut face on a box face stays exactly there (x = 0 for the quadrant): the turned
             // images must land outside the domain, in the ghost shell.
             auto pad = [&](double v, double sign) { return std::fabs(v) < 1e-9 ? 0.0 : v + sign * margin; };
@@ -208,8 +201,7 @@ private:
     double r_i_, r_o_, length_, omega_;
     int wedge_n_;
     bool periodic_ends_;
-    double reynolds_ = 0, taylor_ = 0, taylor_critical_ = 0, reynolds_critical_ = 0;
-    Simulation* sim_ = nullptr;
+    double reynolds_ = 0, taylor_ = 0, taylor_critical_ = 0;
     BoundaryRule *inner_ = nullptr, *outer_ = nullptr;
 };
 

@@ -14,7 +14,6 @@
 #include "support/scene_fixture.hpp"
 
 using namespace emergent;
-using emergent::testing::make_scene;
 using emergent::testing::scene_config;
 
 namespace {
