@@ -13,6 +13,7 @@
 #include "emergent/force_term.hpp"
 #include "emergent/particle_store.hpp"
 #include "emergent/thermostat.hpp"
+#include "emergent/wall_layer.hpp"
 
 namespace emergent {
 
@@ -81,6 +82,9 @@ public:
     BoundaryRule* add_boundary(std::unique_ptr<BoundaryRule> rule);
     /// The boundary rules, in the order added.
     std::vector<const BoundaryRule*> boundary_rules() const;
+    /// Adds a wall-layer thermostat (applied at the end of each step, after the global
+    /// thermostat); the simulation keeps it, the scene may read its energy through the pointer.
+    WallLayerThermostat* add_wall_layer(std::unique_ptr<WallLayerThermostat> layer);
     /// A rule's exchange summed over all ranks. Collective.
     WallExchange global_exchange(const BoundaryRule& rule) const;
     /// Keeps the particle if x lies in this rank's domain.

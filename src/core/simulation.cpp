@@ -47,6 +47,7 @@ struct Simulation::Engine {
     std::vector<std::unique_ptr<ForceTerm>> forces;
     std::unique_ptr<Thermostat> thermostat;
     std::vector<std::unique_ptr<BoundaryRule>> boundaries;
+    std::vector<std::unique_ptr<WallLayerThermostat>> wall_layers;
     std::string boundary_fault;  ///< first particle a rule could not return, since last check
     decomp::Migration migration;
     decomp::HaloExchange halo;
@@ -74,6 +75,8 @@ struct Simulation::Engine {
         cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff());
         if (bodies() && thermostat)
             throw InputError("a thermostat with rigid bodies is not supported yet");
+        if (bodies() && !wall_layers.empty())
+            throw InputError("wall-layer thermostats act on free particles only");
         if (bodies() && !boundaries.empty())
             throw InputError("boundary rules (hard walls) act on free particles only; rigid "
                              "bodies need force walls");
@@ -184,6 +187,12 @@ struct Simulation::Engine {
                        integrate::ScaleVelocity{store.velocity.data(), factor});
     }
 
+    void apply_wall_layers() {
+        if (wall_layers.empty()) return;
+        PhaseTimer timer(times.integrate);
+        for (auto& layer : wall_layers) layer->apply(store, mass, comm, step);
+    }
+
     void require_grid(const char* what) const {
         if (!grid) throw std::logic_error(std::string(what) + ": set_box first");
     }
@@ -235,6 +244,11 @@ void Simulation::add_force(std::unique_ptr<ForceTerm> term) {
 BoundaryRule* Simulation::add_boundary(std::unique_ptr<BoundaryRule> rule) {
     engine_->boundaries.push_back(std::move(rule));
     return engine_->boundaries.back().get();
+}
+
+WallLayerThermostat* Simulation::add_wall_layer(std::unique_ptr<WallLayerThermostat> layer) {
+    engine_->wall_layers.push_back(std::move(layer));
+    return engine_->wall_layers.back().get();
 }
 
 std::vector<const BoundaryRule*> Simulation::boundary_rules() const {
@@ -433,6 +447,7 @@ void Simulation::step(bool sample) {
     e.apply_thermostat();
     ++e.step;
     e.time += e.settings.dt;
+    e.apply_wall_layers();  // keyed by the step just completed
 }
 
 ThermoSample Simulation::measure() const {
@@ -503,7 +518,7 @@ void Simulation::add_body(int kind, const Vec3& com, const Quat& orientation, co
     e.rigid.add(kind, com, orientation, velocity, omega, id, first_particle_id);
 }
 bool Simulation::conserves_energy() const {
-    if (engine_->thermostat) return false;
+    if (engine_->thermostat || !engine_->wall_layers.empty()) return false;
     for (const auto& term : engine_->forces)
         if (!term->conservative()) return false;
     for (const auto& rule : engine_->boundaries)

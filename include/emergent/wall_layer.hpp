@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: MIT
+// Thermostatting of the fluid layer next to a thermal wall.
+#pragma once
+
+#include <mpi.h>
+
+#include <vector>
+
+#include "emergent/particle_store.hpp"
+
+namespace emergent {
+
+/// The fluid layer between `lo` and `hi` along `axis` (e.g. within r_c of a wall), held at the
+/// wall's temperature: every `interval` steps the particles in it have their mean flow along
+/// the wall (the two other axes) removed and their velocities scaled so that the layer's
+/// temperature is `temperature`. Following Rapaport's Rayleigh-Benard walls, this stops any
+/// drift building up along the wall and makes the wall temperature hold where collisions alone
+/// leave a temperature jump; the motion across the wall (convection reaching it) is kept.
+class WallLayerThermostat {
+public:
+    WallLayerThermostat(int axis, double lo, double hi, double temperature, long long interval);
+
+    /// Acts when step % interval == 0. Collective: every rank calls it at every step.
+    void apply(ParticleStore& store, const std::vector<double>& mass, MPI_Comm comm,
+               long long step);
+
+    /// Kinetic energy the layer rescaling has given the fluid since it was made (all ranks;
+    /// the same on every rank). Negative where it cools.
+    double energy() const { return energy_; }
+    /// Temperature of the layer just before the last rescaling (NaN before the first).
+    double last_temperature() const { return last_temperature_; }
+    double temperature() const { return temperature_; }
+    long long interval() const { return interval_; }
+
+private:
+    int axis_;
+    double lo_, hi_, temperature_;
+    long long interval_;
+    double energy_ = 0, last_temperature_;
+};
+
+}  // namespace emergent

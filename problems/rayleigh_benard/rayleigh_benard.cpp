@@ -1,0 +1,245 @@
+// SPDX-License-Identifier: MIT
+// Scene `rayleigh-benard`: a WCA fluid between a hot bottom and a cold top thermal wall, under
+// gravity, periodic in x and y. Above onset, convection cells form; they are found as the
+// temperature minima of a horizontal slice at 0.3 of the height (cold fluid sinks at the cell
+// centres) and measured by their periodic Voronoi polygons and by the slice's power spectrum.
+#include <cmath>
+#include <limits>
+
+#include "emergent/cell_pattern.hpp"
+#include "emergent/error.hpp"
+#include "emergent/lattice.hpp"
+#include "emergent/problem.hpp"
+#include "emergent/simulation.hpp"
+#include "observe/block_average.hpp"
+
+namespace emergent::problems {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+class RayleighBenard final : public Problem {
+public:
+    explicit RayleighBenard(const Config& c)
+        : config_(c), lx_(c.real("width_x")), ly_(c.real("width_y")), lz_(c.real("height")),
+          t_hot_(c.real("t_hot")), t_cold_(c.real("t_cold")),
+          // g = scale x 3 dT / (2 Lz): at scale 1 the potential energy an atom loses falling
+          // through the layer equals the kinetic energy 3 dT / 2 it gains from the walls.
+          gravity_(c.real("gravity_scale") * 1.5 * (c.real("t_hot") - c.real("t_cold")) / c.real("height")),
+          start_time_(c.integer("equilibration_steps") * c.real("dt")) {
+        if (!(t_hot_ > t_cold_) && c.real("gravity_scale") > 0)
+            throw InputError(c.scene() + ": t_hot=" + std::to_string(t_hot_) +
+                             " must exceed t_cold (heated from below)");
+    }
+
+    void build(Simulation& sim) override {
+        sim_ = &sim;
+        Box box;
+        // The box reaches a little past the walls, so a particle resting on a wall is inside it.
+        box.lo = {0, 0, -0.5};
+        box.hi = {lx_, ly_, lz_ + 0.5};
+        box.periodic[2] = false;
+        sim.set_box(box);
+        sim.set_species_masses({1.0});
+        sim.add_force(make_lennard_jones(1.0, 1.0, std::pow(2.0, 1.0 / 6.0)));
+        if (gravity_ > 0) sim.add_force(make_uniform_field({0, 0, -gravity_}));
+        const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
+        bottom_ = sim.add_boundary(make_thermal_wall(WallShape::plane(2, 0.0, +1), t_hot_, seed + 41));
+        top_ = sim.add_boundary(make_thermal_wall(WallShape::plane(2, lz_, -1), t_cold_, seed + 42));
+        const double layer = config_.real("layer_thickness");
+        const auto every = config_.integer("layer_interval");
+        if (layer > 0) {
+            bottom_layer_ = sim.add_wall_layer(
+                std::make_unique<WallLayerThermostat>(2, -1.0, layer, t_hot_, every));
+            top_layer_ = sim.add_wall_layer(
+                std::make_unique<WallLayerThermostat>(2, lz_ - layer, lz_ + 1.0, t_cold_, every));
+        }
+    }
+
+    void place_particles(Simulation& sim) override {
+        const auto target = static_cast<std::int64_t>(
+            std::llround(config_.real("density") * lx_ * ly_ * lz_));
+        const bool periodic[3] = {true, true, false};
+        fill_lattice_with_count(sim, {0, 0, 0}, {lx_, ly_, lz_}, target, periodic,
+                                [](const Vec3&) { return true; });
+        // Start from the conduction profile, T falling linearly from the hot to the cold wall.
+        const double mean = 0.5 * (t_hot_ + t_cold_);
+        sim.assign_thermal_velocities(mean, static_cast<std::uint64_t>(config_.integer("seed")));
+        ParticleStore& s = sim.particles();
+        for (std::size_t i = 0; i < s.n_owned(); ++i) {
+            const double t = t_hot_ + (t_cold_ - t_hot_) * s.position[i].z / lz_;
+            s.velocity[i] = std::sqrt(t / mean) * s.velocity[i];
+        }
+        fresh_start_ = true;
+    }
+
+    std::vector<FieldGrid> field_grids(const Simulation&) const override {
+        const double cell = config_.real("slice_cell");
+        const double z = config_.real("slice_height") * lz_, half = 0.5 * config_.real("slice_thickness");
+        FieldGrid slice;
+        slice.name = "slice";
+        slice.n = {std::max(4, static_cast<int>(std::lround(lx_ / cell))),
+                   std::max(4, static_cast<int>(std::lround(ly_ / cell))), 1};
+        slice.lo = {0, 0, z - half};
+        slice.hi = {lx_, ly_, z + half};
+        FieldGrid profile;
+        profile.name = "profile";
+        profile.n = {1, 1, static_cast<int>(config_.integer("profile_slabs"))};
+        profile.lo = {0, 0, 0};
+        profile.hi = {lx_, ly_, lz_};
+        return {slice, profile};
+    }
+
+    Measures analyse_fields(const FieldGrid& grid, const FieldFrame& f) override {
+        return grid.name == "slice" ? analyse_slice(grid, f) : analyse_profile(grid, f);
+    }
+
+    Measures measures(Simulation& sim) override {
+        Measures m = {{"gravity", {gravity_}},
+                      {"bottom_wall_energy", {sim.global_exchange(*bottom_).energy}},
+                      {"top_wall_energy", {sim.global_exchange(*top_).energy}}};
+        if (bottom_layer_)
+            m.push_back({"wall_layer_energy", {bottom_layer_->energy(), top_layer_->energy()}});
+        if (flux_.count() >= 2) {
+            m.push_back({"mean_heat_flux", {flux_.mean(), flux_.standard_error()}});
+            const double reference = config_.real("conduction_flux");
+            if (reference > 0)
+                m.push_back({"mean_nusselt", {flux_.mean() / reference, flux_.standard_error() / reference}});
+        }
+        if (cells_.count() >= 1)
+            m.push_back({"mean_cell_count", {cells_.mean(), cells_.standard_error()}});
+        return m;
+    }
+
+private:
+    /// Energy given to the fluid through the bottom (hot) and top (cold) walls so far: wall
+    /// collisions plus the rescaling of the layers next to them.
+    std::pair<double, double> wall_heat() const {
+        double bottom = sim_->global_exchange(*bottom_).energy;
+        double top = sim_->global_exchange(*top_).energy;
+        if (bottom_layer_) bottom += bottom_layer_->energy(), top += top_layer_->energy();
+        return {bottom, top};
+    }
+
+    Measures analyse_profile(const FieldGrid&, const FieldFrame&) {
+        // Heat flux through the layer during this frame's interval, per unit area: what the hot
+        // wall put in and the cold wall took out (equal in a steady state), and their mean.
+        const auto [bottom, top] = wall_heat();
+        const double now = sim_->time();
+        double in = kNaN, out = kNaN;
+        if (fresh_start_ || have_last_) {
+            const double interval = now - last_time_, area = lx_ * ly_;
+            in = (bottom - last_bottom_) / (area * interval);
+            out = -(top - last_top_) / (area * interval);
+        }
+        have_last_ = true;
+        last_bottom_ = bottom, last_top_ = top, last_time_ = now;
+        const double flux = 0.5 * (in + out);
+        if (now > start_time_ + 1e-9 && std::isfinite(flux)) flux_.add(flux);
+        const double reference = config_.real("conduction_flux");
+        Measures m = {{"heat_flux", {in, out, flux}}};
+        if (reference > 0) m.push_back({"nusselt", {flux / reference}});
+        return m;
+    }
+
+    Measures analyse_slice(const FieldGrid& grid, const FieldFrame& f) {
+        PeriodicField2D field{grid.n.x, grid.n.y, lx_, ly_, f.temperature};
+        // Cells no particle visited (possible only in a very short frame) take the mean.
+        double mean = 0, filled = 0;
+        for (std::size_t k = 0; k < field.value.size(); ++k)
+            if (f.count[k] > 0) mean += field.value[k], ++filled;
+        mean = filled > 0 ? mean / filled : 0;
+        for (std::size_t k = 0; k < field.value.size(); ++k)
+            if (!(f.count[k] > 0)) field.value[k] = mean;
+        const PeriodicField2D smooth = smooth_periodic(field, config_.real("centre_smoothing") * lz_);
+        const std::vector<Point2> centres = local_minima(smooth);
+        const VoronoiPattern cells = periodic_voronoi(centres, lx_, ly_);
+        const PatternSpectrum spectrum = pattern_spectrum(field);
+        // Vertical flow through the slice: rms over cells of the mean v_z (organised flow), and
+        // the spread of the slice temperature.
+        double vz2 = 0, t2 = 0;
+        const int n = grid.n_cells();
+        for (int k = 0; k < n; ++k) {
+            vz2 += f.velocity[3 * k + 2] * f.velocity[3 * k + 2];
+            t2 += (field.value[k] - mean) * (field.value[k] - mean);
+        }
+        const auto max_cells = static_cast<std::size_t>(config_.integer("max_cells"));
+        std::vector<double> xy(2 * max_cells, kNaN);
+        for (std::size_t k = 0; k < centres.size() && k < max_cells; ++k)
+            xy[2 * k] = centres[k][0], xy[2 * k + 1] = centres[k][1];
+        if (sim_->time() > start_time_ + 1e-9) cells_.add(cells.cells);
+        std::vector<double> histogram(cells.edge_histogram.begin(), cells.edge_histogram.end());
+        return {{"cell_count", {double(cells.cells)}},
+                {"cell_centres", xy},
+                {"cell_edges", {cells.mean_edges, cells.six_sided_fraction}},
+                {"cell_edge_histogram", histogram},
+                {"cell_inradius", {cells.mean_inradius, cells.mean_radial_range, cells.radial_range_spread}},
+                {"wavelength_voronoi", {cells.wavelength()}},
+                {"wavelength_spectrum", {spectrum.dominant_wavelength}},
+                {"slice_vertical_flow_rms", {std::sqrt(vz2 / n)}},
+                {"slice_temperature", {mean, std::sqrt(t2 / n)}}};
+    }
+
+    Config config_;
+    double lx_, ly_, lz_, t_hot_, t_cold_, gravity_, start_time_;
+    Simulation* sim_ = nullptr;
+    BoundaryRule *bottom_ = nullptr, *top_ = nullptr;
+    WallLayerThermostat *bottom_layer_ = nullptr, *top_layer_ = nullptr;
+    bool fresh_start_ = false, have_last_ = false;
+    double last_bottom_ = 0, last_top_ = 0, last_time_ = 0;
+    BlockAverage flux_{10}, cells_{10};
+};
+
+ProblemInfo rayleigh_benard_info() {
+    ProblemInfo info;
+    info.name = "rayleigh-benard";
+    info.description = "WCA fluid heated from below under gravity: convection cells";
+    info.schema = run_schema();
+    info.schema
+        .real("width_x", 679, 4, 1e5, "sigma", "periodic width along x", true)
+        .real("width_y", 679, 4, 1e5, "sigma", "periodic width along y", true)
+        .real("height", 54.3, 4, 1e5, "sigma", "distance between the walls (z)", true)
+        .real("density", 0.4, 0, 1.2, "sigma^-3",
+              "N / V of the fluid; 0.4 = the paper's 1e7 atoms in 679 x 679 x 54.3 (0.3995) and "
+              "4.8e6 in 543 x 543 x 40.7 (0.4000)", true)
+        .real("t_hot", 8, 0, 1e4, "epsilon/k_B", "bottom wall temperature", true)
+        .real("t_cold", 1, 0, 1e4, "epsilon/k_B", "top wall temperature", true)
+        .real("gravity_scale", 0.5, 0, 100, "1",
+              "g in units of 3 (t_hot - t_cold) / (2 height); the paper uses 0.5")
+        .real("layer_thickness", 1.122462, 0, 1e3, "sigma",
+              "fluid layer next to each wall rescaled to the wall temperature (0: none); "
+              "the paper's ~r_c")
+        .integer("layer_interval", 20, 1, 1e9, "steps", "steps between wall-layer rescalings")
+        .real("slice_height", 0.3, 0, 1, "height", "height of the analysed slice above the hot wall")
+        .real("slice_thickness", 2.0, 0.1, 1e4, "sigma", "thickness of the analysed slice")
+        .real("slice_cell", 2.0, 0.1, 1e4, "sigma", "edge of the slice's coarse-graining cells")
+        .real("centre_smoothing", 0.15, 0, 10, "height",
+              "width of the Gaussian the slice temperature is smoothed with before its minima "
+              "(cell centres) are found")
+        .integer("profile_slabs", 20, 2, 100000, "1", "horizontal slabs of the T(z), rho(z) profile")
+        .integer("max_cells", 512, 1, 1000000, "1", "cell centres written per frame (all are counted)")
+        .real("conduction_flux", 0, 0, 1e9, "epsilon/(sigma^2 tau)",
+              "heat flux of the conduction state of the same layer, for the Nusselt number (0: not "
+              "known; run the same layer in a column narrower than the height to measure it)");
+    info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10");
+    info.presets["tiny"] = {{"width_x", "12"}, {"width_y", "12"}, {"height", "10"},
+                            {"equilibration_steps", "0"}, {"steps", "400"},
+                            {"sample_every", "100"}, {"fields.interval", "200"},
+                            {"slice_cell", "3"}, {"profile_slabs", "5"}};
+    info.presets["medium"] = {{"width_x", "543"}, {"width_y", "543"}, {"height", "40.7"},
+                              {"equilibration_steps", "0"}, {"steps", "13000000"},
+                              {"sample_every", "10000"}, {"fields.interval", "10000"},
+                              {"fields.grid", "136x136x10"}, {"output.every", "1000000"}};
+    info.presets["paper"] = {{"equilibration_steps", "0"}, {"steps", "10000000"},
+                             {"sample_every", "10000"}, {"fields.interval", "10000"},
+                             {"fields.grid", "170x170x14"}, {"output.every", "1000000"}};
+    info.factory = [](const Config& c) { return std::make_unique<RayleighBenard>(c); };
+    return info;
+}
+
+}  // namespace
+
+EMERGENT_REGISTER_PROBLEM(rayleigh_benard_info);
+
+}  // namespace emergent::problems
