@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "emergent/box.hpp"
 #include "emergent/particle_store.hpp"
 
 namespace emergent {
@@ -57,6 +58,9 @@ struct BoundaryContext {
     const std::vector<double>* mass = nullptr;  ///< per species
     double dt = 0;
     long long step = 0;  ///< the step being taken (keys the wall's random draws)
+    /// The region; along its periodic axes a wall reads impact points in the primary image,
+    /// so its choices do not depend on which image a rank happens to hold.
+    const Box* box = nullptr;
 };
 
 /// A rule applied to owned particles right after the drift. It finds each particle that

@@ -140,7 +140,7 @@ struct Simulation::Engine {
                                             inverse_mass.data(), settings.dt});
         // Spheres of bodies were moved as free particles above; the bodies now place them.
         if (bodies()) rigid.kick_drift(store, settings.dt);
-        const BoundaryContext context{&mass, settings.dt, step};
+        const BoundaryContext context{&mass, settings.dt, step, &box};
         for (auto& rule : boundaries) rule->apply(store, context, boundary_fault);
     }
 

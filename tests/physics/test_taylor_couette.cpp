@@ -26,44 +26,11 @@ std::vector<std::string> tiny(std::vector<std::string> extra = {}) {
     return s;
 }
 
-/// The scene, built and initialised, with the problem kept (for its field grids).
-struct Scene {
-    std::unique_ptr<Problem> problem;
-    std::unique_ptr<Simulation> sim;
-};
+using Scene = emergent::testing::BuiltScene;
+using emergent::testing::gather_positions;
 
 Scene build_scene(MPI_Comm comm, const std::vector<std::string>& sets) {
-    const Config config = scene_config("taylor-couette", sets);
-    RunSettings settings;
-    settings.dt = config.real("dt");
-    settings.skin = config.real("skin");
-    Scene s;
-    s.sim = std::make_unique<Simulation>(comm, settings);
-    s.problem = ProblemRegistry::instance().find("taylor-couette")->factory(config);
-    s.problem->build(*s.sim);
-    s.problem->place_particles(*s.sim);
-    s.sim->initialise();
-    return s;
-}
-
-/// (id -> position) of every particle on every rank.
-std::map<std::int64_t, Vec3> gather_positions(const Simulation& sim) {
-    const ParticleStore& s = sim.particles();
-    std::vector<double> mine;
-    for (std::size_t i = 0; i < s.n_owned(); ++i)
-        mine.insert(mine.end(), {double(s.id[i]), s.position[i].x, s.position[i].y, s.position[i].z});
-    int n = static_cast<int>(mine.size()), ranks = 1;
-    MPI_Comm_size(sim.comm(), &ranks);
-    std::vector<int> counts(ranks), offsets(ranks, 0);
-    MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm());
-    for (int r = 1; r < ranks; ++r) offsets[r] = offsets[r - 1] + counts[r - 1];
-    std::vector<double> all(offsets.back() + counts.back());
-    MPI_Allgatherv(mine.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(),
-                   MPI_DOUBLE, sim.comm());
-    std::map<std::int64_t, Vec3> out;
-    for (std::size_t k = 0; k < all.size(); k += 4)
-        out[static_cast<std::int64_t>(all[k])] = {all[k + 1], all[k + 2], all[k + 3]};
-    return out;
+    return emergent::testing::build_scene(comm, "taylor-couette", sets);
 }
 
 }  // namespace
@@ -201,8 +168,7 @@ TEST(TaylorCouette, WedgeForcesEqualThoseOfTheFullAnnulus) {
 TEST(TaylorCouette, SameTrajectoryOnAnyRankCount) {
     // Split along the axis on the ranks of the test, and on one rank: after 300 steps the
     // particles agree to round-off amplified by the fluid's chaos over 1.5 time units. The
-    // thermal walls' choices depend on the impact point only to 4e-9 relative, so round-off
-    // does not flip them.
+    // thermal walls' choices see the impact point only to 1e-9, so round-off does not flip them.
     Scene many = build_scene(MPI_COMM_WORLD, tiny());
     Scene one = build_scene(MPI_COMM_SELF, tiny());
     for (int k = 0; k < 300; ++k) many.sim->step(false), one.sim->step(false);
