@@ -13,8 +13,12 @@ trap 'rm -rf "$dir"' EXIT
 "$exe" run taylor-couette --preset tiny --set steps=1000 --set fields.interval=250 \
   --set progress_interval=0 -o "$dir/tc" >/dev/null
 "$scripts/plot_taylor_couette" "$dir/tc" "$dir/tc/fig" >/dev/null
+"$exe" run rayleigh-benard --preset tiny --set steps=1000 --set fields.interval=250 \
+  --set fields.grid=4x4x5 --set progress_interval=0 -o "$dir/rb" >/dev/null
+"$scripts/plot_rayleigh_benard" "$dir/rb" "$dir/rb/fig" >/dev/null
 for png in "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
-           "$dir/tc/fig-vortices.png"; do
+           "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
+           "$dir/rb/fig-flow.png"; do
   # A PNG signature and more than a blank canvas's worth of bytes.
   [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || { echo "FAIL: $png is not a PNG"; exit 1; }
   [ "$(stat -c %s "$png")" -gt 10000 ] || { echo "FAIL: $png is nearly empty"; exit 1; }
