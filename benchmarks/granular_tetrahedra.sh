@@ -8,9 +8,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
 ranks_list=${2:-"1 2"}
-exe=$PWD/build/bin/emergent
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 . benchmarks/common.sh
 bed=(--set particles=tetrahedra --set nx=16 --set ny=16 --set nz=9 --set spacing=2.5 --set height=40)
 "$exe" run granular-bed "${bed[@]}" --set equilibration_steps=10000 --set steps=0 \

@@ -13,9 +13,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
 ranks_list=${2:-"1 2"}
-exe=$PWD/build/bin/emergent
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 . benchmarks/common.sh
 rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
 n=19602

@@ -8,9 +8,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats=${1:-3}
 ranks_list=${2:-"1 2"}
-exe=$PWD/build/bin/emergent
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 . benchmarks/common.sh
 for r in $(seq "$repeats"); do
   for np in $ranks_list; do

@@ -52,10 +52,30 @@ struct Box {
     Wedge wedge;  ///< rotational images about z (x and y are then bounded and not split)
 
     EMERGENT_HD Vec3 length() const { return hi - lo; }
+    /// x moved into [lo, hi) along the periodic axes (the image every rank agrees on).
+    Vec3 primary_image(Vec3 x) const {
+        for (int d = 0; d < 3; ++d) {
+            if (!periodic[d]) continue;
+            const Real l = hi[d] - lo[d];
+            x[d] -= l * std::floor((x[d] - lo[d]) / l);
+            if (x[d] >= hi[d]) x[d] = lo[d];  // a hair below lo rounds up to hi
+        }
+        return x;
+    }
     EMERGENT_HD Real volume() const {
         const Vec3 l = length();
         return l.x * l.y * l.z;
     }
 };
+
+/// A fluid layer between walls at z = 0 and z = height, periodic in x and y. The box reaches
+/// `margin` past each wall, so a particle resting on a wall is still inside it.
+inline Box wall_bounded_layer(Real lx, Real ly, Real height, Real margin = 0.5) {
+    Box box;
+    box.lo = {0, 0, -margin};
+    box.hi = {lx, ly, height + margin};
+    box.periodic[2] = false;
+    return box;
+}
 
 }  // namespace emergent

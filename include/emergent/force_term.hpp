@@ -49,6 +49,11 @@ public:
 /// there; cutoff = 2^(1/6) sigma gives the purely repulsive WCA potential.
 std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, double cutoff);
 
+/// The purely repulsive WCA fluid of the hydrodynamic scenes (epsilon = sigma = 1).
+inline std::unique_ptr<ForceTerm> make_wca() {
+    return make_lennard_jones(1.0, 1.0, 1.122462048309373);  // 2^(1/6)
+}
+
 /// Contact law of one pair of species (paper eqs. 2, 7, 8): overlap repulsion
 /// u = (k_n / 2)(r_c - r)^2, normal damping f_d = -gamma_n (n.v) n, and sliding friction
 /// f_s = -min(gamma_s |v_t|, mu |f_l + f_d|) v_t / |v_t|.

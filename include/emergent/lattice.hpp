@@ -32,6 +32,11 @@ std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3
                                      std::int64_t target, const bool periodic[3],
                                      const std::function<bool(const Vec3&)>& inside);
 
+/// Fills the layer of wall_bounded_layer(lx, ly, height) with round(density lx ly height)
+/// particles (fill_lattice_with_count; whole lattice planes across x and y). Returns the count.
+std::int64_t fill_wall_bounded_layer(Simulation& sim, double lx, double ly, double height,
+                                     double density);
+
 /// Lattice spacing for number density `density` on a simple cubic lattice.
 inline double cubic_spacing(double density) { return 1.0 / std::cbrt(density); }
 

@@ -27,16 +27,12 @@ public:
     /// Kinetic energy the layer rescaling has given the fluid since it was made (all ranks;
     /// the same on every rank). Negative where it cools.
     double energy() const { return energy_; }
-    /// Temperature of the layer just before the last rescaling (NaN before the first).
-    double last_temperature() const { return last_temperature_; }
-    double temperature() const { return temperature_; }
-    long long interval() const { return interval_; }
 
 private:
     int axis_;
     double lo_, hi_, temperature_;
     long long interval_;
-    double energy_ = 0, last_temperature_;
+    double energy_ = 0;
 };
 
 }  // namespace emergent

@@ -23,15 +23,9 @@ public:
 
     void build(Simulation& sim) override {
         sim_ = &sim;
-        Box box;
-        // Walls at z = 0 and z = height; the box reaches a little beyond so that a particle
-        // resting on a wall is still inside it.
-        box.lo = {0, 0, -0.5};
-        box.hi = {width_, width_, height_ + 0.5};
-        box.periodic[2] = false;
-        sim.set_box(box);
+        sim.set_box(wall_bounded_layer(width_, width_, height_));
         sim.set_species_masses({1.0});
-        sim.add_force(make_lennard_jones(1.0, 1.0, std::pow(2.0, 1.0 / 6.0)));
+        sim.add_force(make_wca());
         const double kT = config_.real("wall_temperature");
         const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
         WallMotion bottom_motion, top_motion;
@@ -44,12 +38,7 @@ public:
     }
 
     void place_particles(Simulation& sim) override {
-        // Whole lattice planes across the periodic directions; N = density x volume.
-        const auto target = static_cast<std::int64_t>(
-            std::llround(config_.real("density") * width_ * width_ * height_));
-        const bool periodic[3] = {true, true, false};
-        fill_lattice_with_count(sim, {0, 0, 0}, {width_, width_, height_}, target, periodic,
-                                [](const Vec3&) { return true; });
+        fill_wall_bounded_layer(sim, width_, width_, height_, config_.real("density"));
         const double t0 = config_.real("initial_temperature");
         sim.assign_thermal_velocities(t0 > 0 ? t0 : config_.real("wall_temperature"),
                                       static_cast<std::uint64_t>(config_.integer("seed")));

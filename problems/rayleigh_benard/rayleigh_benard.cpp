@@ -35,14 +35,9 @@ public:
 
     void build(Simulation& sim) override {
         sim_ = &sim;
-        Box box;
-        // The box reaches a little past the walls, so a particle resting on a wall is inside it.
-        box.lo = {0, 0, -0.5};
-        box.hi = {lx_, ly_, lz_ + 0.5};
-        box.periodic[2] = false;
-        sim.set_box(box);
+        sim.set_box(wall_bounded_layer(lx_, ly_, lz_));
         sim.set_species_masses({1.0});
-        sim.add_force(make_lennard_jones(1.0, 1.0, std::pow(2.0, 1.0 / 6.0)));
+        sim.add_force(make_wca());
         if (gravity_ > 0) sim.add_force(make_uniform_field({0, 0, -gravity_}));
         const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
         bottom_ = sim.add_boundary(make_thermal_wall(WallShape::plane(2, 0.0, +1), t_hot_, seed + 41));
@@ -58,11 +53,7 @@ public:
     }
 
     void place_particles(Simulation& sim) override {
-        const auto target = static_cast<std::int64_t>(
-            std::llround(config_.real("density") * lx_ * ly_ * lz_));
-        const bool periodic[3] = {true, true, false};
-        fill_lattice_with_count(sim, {0, 0, 0}, {lx_, ly_, lz_}, target, periodic,
-                                [](const Vec3&) { return true; });
+        fill_wall_bounded_layer(sim, lx_, ly_, lz_, config_.real("density"));
         // Start from the conduction profile, T falling linearly from the hot to the cold wall.
         const double mean = 0.5 * (t_hot_ + t_cold_);
         sim.assign_thermal_velocities(mean, static_cast<std::uint64_t>(config_.integer("seed")));

@@ -87,7 +87,7 @@ public:
         const bool split[3] = {false, false, true};
         sim.set_box(box, split);
         sim.set_species_masses({1.0});
-        sim.add_force(make_lennard_jones(1.0, 1.0, std::pow(2.0, 1.0 / 6.0)));
+        sim.add_force(make_wca());
 
         const double kT = config_.real("wall_temperature");
         const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));

@@ -21,18 +21,6 @@ std::uint64_t bits_of(double x) {
     return static_cast<std::uint64_t>(std::llround(std::ldexp(x, 30)));
 }
 
-/// x moved into [lo, hi) along the periodic axes of `box` (unchanged without a box).
-Vec3 primary_image(Vec3 x, const Box* box) {
-    if (!box) return x;
-    for (int d = 0; d < 3; ++d) {
-        if (!box->periodic[d]) continue;
-        const double length = box->hi[d] - box->lo[d];
-        x[d] -= length * std::floor((x[d] - box->lo[d]) / length);
-        if (x[d] >= box->hi[d]) x[d] = box->lo[d];  // a hair below lo rounds up to hi
-    }
-    return x;
-}
-
 /// Shared part of both walls: find the crossings, move each particle along its path to the
 /// impact point, let the wall choose the new velocity, finish the step from there.
 template <class NewVelocity>
@@ -56,7 +44,7 @@ void bounce(const WallGeometry& wall, ParticleStore& store, const BoundaryContex
         }
         const Vec3 n = wall.normal(hit);
         const Vec3 u = wall.velocity_at(hit);
-        const Vec3 v_new = u + new_velocity(v - u, n, primary_image(hit, context.box), store.id[i], m);
+        const Vec3 v_new = u + new_velocity(v - u, n, context.box ? context.box->primary_image(hit) : hit, store.id[i], m);
         x = hit + (dt - t) * v_new;
         // A grazing departure from a curved wall may end a hair beyond it: keep it on the wall.
         if (!wall.on_fluid_side(x)) x = hit + (1e-12 * (1 + std::fabs(wall.gap(x)))) * n;

@@ -80,4 +80,12 @@ std::int64_t fill_cubic_lattice(Simulation& sim, const Vec3& lo, const Vec3& hi,
     return id - first_id;
 }
 
+std::int64_t fill_wall_bounded_layer(Simulation& sim, double lx, double ly, double height,
+                                     double density) {
+    const auto target = static_cast<std::int64_t>(std::llround(density * lx * ly * height));
+    const bool periodic[3] = {true, true, false};
+    return fill_lattice_with_count(sim, {0, 0, 0}, {lx, ly, height}, target, periodic,
+                                   [](const Vec3&) { return true; });
+}
+
 }  // namespace emergent

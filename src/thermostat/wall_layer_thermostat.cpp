@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Rescaling of the fluid layer next to a thermal wall.
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 
 #include "decomposition/reductions.hpp"
@@ -11,8 +10,7 @@ namespace emergent {
 
 WallLayerThermostat::WallLayerThermostat(int axis, double lo, double hi, double temperature,
                                          long long interval)
-    : axis_(axis), lo_(lo), hi_(hi), temperature_(temperature), interval_(interval),
-      last_temperature_(std::numeric_limits<double>::quiet_NaN()) {
+    : axis_(axis), lo_(lo), hi_(hi), temperature_(temperature), interval_(interval) {
     if (axis < 0 || axis > 2 || !(hi > lo) || !(temperature > 0) || interval < 1)
         throw std::invalid_argument("WallLayerThermostat: needs axis 0-2, hi > lo, T > 0, interval >= 1");
 }
@@ -43,7 +41,6 @@ void WallLayerThermostat::apply(ParticleStore& store, const std::vector<double>&
     drift[axis_] = 0;  // the flow across the wall is kept
     const double twice_kinetic = all[4] - all[0] * dot(drift, drift);
     const double dof = 3 * n - 2;
-    last_temperature_ = twice_kinetic / dof;
     if (!(twice_kinetic > 0)) return;
     const double factor = std::sqrt(temperature_ * dof / twice_kinetic);
     for (std::size_t i = 0; i < store.n_owned(); ++i)

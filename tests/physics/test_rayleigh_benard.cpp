@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
@@ -28,14 +29,19 @@ BuiltScene build(MPI_Comm comm, const std::vector<std::string>& sets) {
     return emergent::testing::build_scene(comm, "rayleigh-benard", sets);
 }
 
-/// Energy the walls and their layers have given the fluid (all ranks).
+/// Energy the bottom and the top wall, each with its layer, have given the fluid (all ranks).
+std::pair<double, double> heat_through_walls(const BuiltScene& s) {
+    const auto rules = s.sim->boundary_rules();
+    double bottom = s.sim->global_exchange(*rules[0]).energy;
+    double top = s.sim->global_exchange(*rules[1]).energy;
+    for (const auto& [name, value] : s.problem->measures(*s.sim))
+        if (name == "wall_layer_energy") bottom += value[0], top += value[1];
+    return {bottom, top};
+}
+
 double wall_heat(const BuiltScene& s) {
-    double heat = 0;
-    for (const BoundaryRule* rule : s.sim->boundary_rules()) heat += s.sim->global_exchange(*rule).energy;
-    const Measures m = s.problem->measures(*s.sim);
-    for (const auto& [name, value] : m)
-        if (name == "wall_layer_energy") heat += value[0] + value[1];
-    return heat;
+    const auto [bottom, top] = heat_through_walls(s);
+    return bottom + top;
 }
 
 double total_energy(const Simulation& sim) {
@@ -95,19 +101,13 @@ TEST(RayleighBenard, ConductionStateHoldsTheWallTemperaturesAndCarriesASteadyFlu
     grid.n = {1, 1, 10};
     FieldAccumulator profile(grid);
     std::vector<double> in, out;
-    auto heat = [&](const BoundaryRule* rule) { return sim.global_exchange(*rule).energy; };
-    const auto rules = sim.boundary_rules();
     for (int block = 0; block < 10; ++block) {
-        double q_in = heat(rules[0]), q_out = heat(rules[1]);
-        for (const auto& [name, value] : s.problem->measures(sim))
-            if (name == "wall_layer_energy") q_in += value[0], q_out += value[1];
+        const auto [q_in, q_out] = heat_through_walls(s);
         for (int k = 1; k <= 800; ++k) {
             sim.step(false);
             if (k % 10 == 0) profile.add(sim.particles(), sim.species_masses(), sim.box());
         }
-        double r_in = heat(rules[0]), r_out = heat(rules[1]);
-        for (const auto& [name, value] : s.problem->measures(sim))
-            if (name == "wall_layer_energy") r_in += value[0], r_out += value[1];
+        const auto [r_in, r_out] = heat_through_walls(s);
         in.push_back(r_in - q_in), out.push_back(-(r_out - q_out));
     }
     double mean_in = 0, mean_out = 0, var = 0;
