@@ -5,7 +5,22 @@
 
 #include <cstddef>
 
+#include "emergent/macros.hpp"
+
 namespace emergent::exec {
+
+/// Two per-particle functors fused into one pass: second(i) runs right after first(i), so it
+/// reads what first just wrote from cache rather than from memory. Only for functors that
+/// touch particle i's data alone.
+template <class First, class Second>
+struct Then {
+    First first;
+    Second second;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        first(i);
+        second(i);
+    }
+};
 
 /// Host back end: a plain loop the compiler can vectorise.
 struct Host {};

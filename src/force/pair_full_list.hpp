@@ -3,34 +3,90 @@
 // CPU loop (exec::Host) and as one CUDA thread per particle (exec::Cuda), without atomics.
 #pragma once
 
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "emergent/vec3.hpp"
 
 namespace emergent::force {
 
-/// f[i] = sum over listed j of the evaluator's pair force; writes only f[i].
-template <class Evaluator>
+/// Neighbours of i at index[offset[i] .. offset[i+1]): the CPU engine's compressed rows.
+struct CompressedNeighbours {
+    const std::uint32_t* offset;
+    const std::uint32_t* index;
+    EMERGENT_HD std::uint32_t count(std::size_t i) const { return offset[i + 1] - offset[i]; }
+    EMERGENT_HD std::uint32_t at(std::size_t i, std::uint32_t k) const { return index[offset[i] + k]; }
+};
+
+/// Neighbour k of i at index[k * stride + i]: the GPU layout, where the 32 threads of a warp
+/// read 32 consecutive words for the same k (one memory transaction instead of 32).
+struct StridedNeighbours {
+    const std::uint32_t* n;
+    const std::uint32_t* index;
+    std::size_t stride;
+    EMERGENT_HD std::uint32_t count(std::size_t i) const { return n[i]; }
+    EMERGENT_HD std::uint32_t at(std::size_t i, std::uint32_t k) const { return index[k * stride + i]; }
+};
+
+/// Separation as stored: the CPU engine's periodic images are explicit ghost particles.
+struct DirectSeparation {
+    EMERGENT_HD Vec3 operator()(const Vec3& d) const { return d; }
+};
+
+/// Nearest periodic image in an orthorhombic box (every side at least twice the list cutoff):
+/// the single-GPU path keeps no ghosts.
+struct MinimumImage {
+    Vec3 length, inverse;
+    EMERGENT_HD Vec3 operator()(Vec3 d) const {
+        d.x -= length.x * rint(d.x * inverse.x);
+        d.y -= length.y * rint(d.y * inverse.y);
+        d.z -= length.z * rint(d.z * inverse.z);
+        return d;
+    }
+};
+
+/// f[i] = sum over listed j of the evaluator's pair force; writes only f[i]. The separation is
+/// formed in double; the evaluator's own type (double, or float in mixed mode) does the rest,
+/// and the sum over neighbours is kept in double. With sampling on, energy[i] and virial[i]
+/// get half of each pair's energy and r.f (each pair is listed under both members).
+template <class Evaluator, class Neighbours = CompressedNeighbours,
+          class Separation = DirectSeparation, bool Sample = false>
 struct PairForceFullList {
     const Vec3* x;
     Vec3* f;
-    const std::uint32_t* offset;
-    const std::uint32_t* neighbour;
+    Neighbours neighbours;
     Evaluator eval;
+    Separation separation{};
+    Real* energy = nullptr;
+    Real* virial = nullptr;
 
     EMERGENT_HD void operator()(std::size_t i) const {
+        using T = decltype(eval.cutoff_sq);
         const Vec3 xi = x[i];
         Vec3 fi{0, 0, 0};
-        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
-            const Vec3 xj = x[neighbour[k]];
-            const Real dx = xi.x - xj.x, dy = xi.y - xj.y, dz = xi.z - xj.z;
-            const Real r2 = dx * dx + dy * dy + dz * dz;
-            const Real fr = r2 < eval.cutoff_sq ? eval.force_over_r(r2) : Real(0);
-            fi.x += fr * dx;
-            fi.y += fr * dy;
-            fi.z += fr * dz;
+        Real ei = 0, wi = 0;
+        const std::uint32_t n = neighbours.count(i);
+        for (std::uint32_t k = 0; k < n; ++k) {
+            const Vec3 d = separation(xi - x[neighbours.at(i, k)]);
+            const T dx = T(d.x), dy = T(d.y), dz = T(d.z);
+            const T r2 = dx * dx + dy * dy + dz * dz;
+            if (r2 < eval.cutoff_sq) {
+                const T fr = eval.force_over_r(r2);
+                fi.x += Real(fr * dx);
+                fi.y += Real(fr * dy);
+                fi.z += Real(fr * dz);
+                if constexpr (Sample) {
+                    ei += Real(eval.energy(r2));
+                    wi += Real(fr * r2);
+                }
+            }
         }
         f[i] = fi;
+        if constexpr (Sample) {
+            energy[i] = 0.5 * ei;
+            virial[i] = 0.5 * wi;
+        }
     }
 };
 

@@ -56,8 +56,8 @@ TEST(PairFullList, SameForcesAsTheHalfListLoop) {
     }());
     std::vector<Vec3> f(store.size(), Vec3{0, 0, 0});
     exec::for_each(exec::Host{}, store.n_owned(),
-                   force::PairForceFullList<force::LennardJones>{store.position.data(), f.data(),
-                                                                 full.offsets(), full.neighbours(), lj});
+                   force::PairForceFullList<force::LennardJones>{
+                       store.position.data(), f.data(), {full.offsets(), full.neighbours()}, lj});
     double worst = 0, scale = 0;
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
         const Vec3 d = f[i] - half[i];

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: MIT
+// One GPU per rank, chosen by the rank's index on its node.
+#include <cuda_runtime.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <vector>
+#include <stdexcept>
+#include <string>
+
+#include "emergent/gpu.hpp"
+#include "execution/cuda_launch.cuh"
+
+namespace emergent::gpu {
+
+namespace {
+
+/// The rank's index among the ranks of its node, from the launcher's environment (no MPI call:
+/// the device must be chosen before any CUDA-aware MPI initialisation touches one).
+int local_rank() {
+    for (const char* name : {"OMPI_COMM_WORLD_LOCAL_RANK", "SLURM_LOCALID", "MPI_LOCALRANKID",
+                             "MV2_COMM_WORLD_LOCAL_RANK", "PMI_LOCAL_RANK"})
+        if (const char* v = std::getenv(name)) return std::atoi(v);
+    return 0;
+}
+
+int device_count() {
+    int n = 0;
+    if (cudaGetDeviceCount(&n) != cudaSuccess) {
+        cudaGetLastError();  // clear the sticky "no device" error for later calls
+        return 0;
+    }
+    return n;
+}
+
+}  // namespace
+
+bool device_present() { return device_count() > 0; }
+
+DeviceInfo select_device() {
+    const int n = device_count();
+    if (n == 0)
+        throw std::runtime_error("execution on the GPU was requested but no CUDA device is present");
+    DeviceInfo info;
+    info.index = local_rank() % n;
+    EMERGENT_CUDA_CHECK(cudaSetDevice(info.index));
+    cudaDeviceProp prop{};
+    EMERGENT_CUDA_CHECK(cudaGetDeviceProperties(&prop, info.index));
+    info.name = prop.name;
+    info.multiprocessors = prop.multiProcessorCount;
+    info.memory_bytes = prop.totalGlobalMem;
+    return info;
+}
+
+std::size_t device_memory_in_use() {
+    std::size_t free = 0, total = 0;
+    EMERGENT_CUDA_CHECK(cudaMemGetInfo(&free, &total));
+    return total - free;
+}
+
+double copy_bandwidth(std::size_t bytes, int repeats) {
+    void *a = nullptr, *b = nullptr;
+    EMERGENT_CUDA_CHECK(cudaMalloc(&a, bytes));
+    EMERGENT_CUDA_CHECK(cudaMalloc(&b, bytes));
+    EMERGENT_CUDA_CHECK(cudaMemset(a, 1, bytes));  // real data, not untouched pages
+    cudaEvent_t t0, t1;
+    EMERGENT_CUDA_CHECK(cudaEventCreate(&t0));
+    EMERGENT_CUDA_CHECK(cudaEventCreate(&t1));
+    std::vector<float> ms;
+    for (int r = 0; r < repeats + 1; ++r) {  // the first copy warms up and is dropped
+        EMERGENT_CUDA_CHECK(cudaEventRecord(t0));
+        EMERGENT_CUDA_CHECK(cudaMemcpy(b, a, bytes, cudaMemcpyDeviceToDevice));
+        EMERGENT_CUDA_CHECK(cudaEventRecord(t1));
+        EMERGENT_CUDA_CHECK(cudaEventSynchronize(t1));
+        float e = 0;
+        EMERGENT_CUDA_CHECK(cudaEventElapsedTime(&e, t0, t1));
+        if (r > 0) ms.push_back(e);
+    }
+    cudaEventDestroy(t0);
+    cudaEventDestroy(t1);
+    cudaFree(a);
+    cudaFree(b);
+    std::sort(ms.begin(), ms.end());
+    return 2.0 * double(bytes) / (1e-3 * ms[ms.size() / 2]);
+}
+
+}  // namespace emergent::gpu
