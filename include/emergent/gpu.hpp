@@ -35,6 +35,11 @@ std::size_t device_memory_in_use();
 /// median of `repeats` copies of `bytes`: the bandwidth ceiling for roofline figures.
 double copy_bandwidth(std::size_t bytes, int repeats);
 
+/// Threads per particle for a loop over neighbours (or candidates): enough threads to fill the
+/// device (2048 per multiprocessor), each with at least 3 to handle. Chosen from the sweep in
+/// benchmarks/RESULTS.md (H100: 64000 LJ atoms best at 4-8, 1 million WCA atoms at 1).
+int lanes_for(std::size_t particles, double mean_neighbours, int multiprocessors);
+
 /// Arithmetic of the pair forces. Double is the reference; Mixed evaluates each pair in float
 /// from a double separation and sums in double (positions, velocities and sums stay double).
 enum class Precision { Double, Mixed };
@@ -48,6 +53,10 @@ struct PairSystemSpec {
     double dt = 0.005;
     double mass = 1;
     Precision precision = Precision::Double;
+    int block_size = 256;  ///< threads per block of every per-particle kernel
+    /// GPU threads sharing one particle's neighbour sum (1, 2, 4, ... 32); 0 chooses from the
+    /// particle count and the mean neighbour count at each list build (see lanes_for()).
+    int lanes_per_particle = 0;
 };
 
 /// Time-averaged-free instantaneous sums over all particles.
@@ -69,6 +78,7 @@ struct ListStats {
     long builds = 0;
     double mean_neighbours = 0;  ///< full list, at the last build
     std::uint32_t capacity = 0;  ///< neighbour slots per particle
+    int lanes = 1;               ///< threads per particle of the force pass
 };
 
 class PeriodicPairSystem {
@@ -83,6 +93,8 @@ class PeriodicPairSystem {
     void run(long steps);
     /// Energies and virial of the current state (one extra force pass with sampling on).
     Thermo thermo();
+    /// v *= factor for every particle (the engine's velocity-rescaling functor).
+    void scale_velocities(double factor);
     /// Unwrapped positions and velocities in id order.
     std::vector<Vec3> positions() const;
     std::vector<Vec3> velocities() const;

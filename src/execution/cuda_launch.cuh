@@ -6,6 +6,7 @@
 #include <cuda_runtime.h>
 
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -37,6 +38,53 @@ void for_each(Cuda backend, std::size_t n, const Functor& f) {
     if (n == 0) return;
     const unsigned blocks = static_cast<unsigned>((n + backend.block_size - 1) / backend.block_size);
     for_each_kernel<<<blocks, backend.block_size, 0, backend.stream>>>(n, f);
+    EMERGENT_CUDA_CHECK(cudaGetLastError());
+}
+
+/// v from the lane `offset` above, within segments of Width lanes (any trivially copyable v).
+template <int Width, class T>
+__device__ T shuffle_down(const T& v, unsigned offset) {
+    static_assert(sizeof(T) % sizeof(int) == 0, "shuffled values are whole words");
+    int words[sizeof(T) / sizeof(int)];
+    memcpy(words, &v, sizeof(T));
+#pragma unroll
+    for (unsigned w = 0; w < sizeof(T) / sizeof(int); ++w)
+        words[w] = __shfl_down_sync(0xffffffffu, words[w], offset, Width);
+    T out;
+    memcpy(&out, words, sizeof(T));
+    return out;
+}
+
+template <int Lanes, class Functor>
+__global__ void for_each_split_kernel(std::size_t n, Functor f) {
+    const std::size_t t = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
+    const std::size_t i = t / Lanes;
+    const unsigned lane = threadIdx.x % Lanes;
+    // Every lane of the warp takes part in the shuffles, so none returns early.
+    typename Functor::Partial s{};
+    if (i < n) s = f.partial(i, lane, Lanes);
+#pragma unroll
+    for (unsigned offset = Lanes / 2; offset > 0; offset /= 2) s += shuffle_down<Lanes>(s, offset);
+    if (i < n && lane == 0) f.store(i, s);
+}
+
+/// For functors whose work for particle i is a sum over its neighbours (partial(i, first,
+/// stride) and store(i, sum)): `lanes` threads of a warp share each particle and add their
+/// partial sums by shuffles. More threads in flight when particles are few or neighbours many.
+template <class Functor>
+void for_each_split(Cuda backend, std::size_t n, int lanes, const Functor& f) {
+    if (n == 0) return;
+    const std::size_t threads = n * static_cast<std::size_t>(lanes);
+    const unsigned blocks = static_cast<unsigned>((threads + backend.block_size - 1) / backend.block_size);
+    switch (lanes) {
+        case 1: for_each_kernel<<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
+        case 2: for_each_split_kernel<2><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
+        case 4: for_each_split_kernel<4><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
+        case 8: for_each_split_kernel<8><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
+        case 16: for_each_split_kernel<16><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
+        case 32: for_each_split_kernel<32><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
+        default: throw std::invalid_argument("lanes per particle must be 1, 2, 4, 8, 16 or 32");
+    }
     EMERGENT_CUDA_CHECK(cudaGetLastError());
 }
 

@@ -46,13 +46,29 @@ struct MinimumImage {
     }
 };
 
+/// Sums over some or all of a particle's neighbours: force, energy and virial.
+struct PairSums {
+    Vec3 f{0, 0, 0};
+    Real energy = 0, virial = 0;
+    EMERGENT_HD PairSums& operator+=(const PairSums& o) {
+        f += o.f;
+        energy += o.energy;
+        virial += o.virial;
+        return *this;
+    }
+};
+
 /// f[i] = sum over listed j of the evaluator's pair force; writes only f[i]. The separation is
 /// formed in double; the evaluator's own type (double, or float in mixed mode) does the rest,
 /// and the sum over neighbours is kept in double. With sampling on, energy[i] and virial[i]
 /// get half of each pair's energy and r.f (each pair is listed under both members).
+/// partial() sums every stride-th neighbour from first, so several GPU threads can share one
+/// particle (exec::for_each_split); operator() is the one-thread-per-particle form.
 template <class Evaluator, class Neighbours = CompressedNeighbours,
           class Separation = DirectSeparation, bool Sample = false>
 struct PairForceFullList {
+    using Partial = PairSums;
+
     const Vec3* x;
     Vec3* f;
     Neighbours neighbours;
@@ -61,33 +77,38 @@ struct PairForceFullList {
     Real* energy = nullptr;
     Real* virial = nullptr;
 
-    EMERGENT_HD void operator()(std::size_t i) const {
+    EMERGENT_HD PairSums partial(std::size_t i, std::uint32_t first, std::uint32_t stride) const {
         using T = decltype(eval.cutoff_sq);
         const Vec3 xi = x[i];
-        Vec3 fi{0, 0, 0};
-        Real ei = 0, wi = 0;
+        PairSums s;
         const std::uint32_t n = neighbours.count(i);
-        for (std::uint32_t k = 0; k < n; ++k) {
+        for (std::uint32_t k = first; k < n; k += stride) {
             const Vec3 d = separation(xi - x[neighbours.at(i, k)]);
             const T dx = T(d.x), dy = T(d.y), dz = T(d.z);
             const T r2 = dx * dx + dy * dy + dz * dz;
             if (r2 < eval.cutoff_sq) {
                 const T fr = eval.force_over_r(r2);
-                fi.x += Real(fr * dx);
-                fi.y += Real(fr * dy);
-                fi.z += Real(fr * dz);
+                s.f.x += Real(fr * dx);
+                s.f.y += Real(fr * dy);
+                s.f.z += Real(fr * dz);
                 if constexpr (Sample) {
-                    ei += Real(eval.energy(r2));
-                    wi += Real(fr * r2);
+                    s.energy += Real(eval.energy(r2));
+                    s.virial += Real(fr * r2);
                 }
             }
         }
-        f[i] = fi;
+        return s;
+    }
+
+    EMERGENT_HD void store(std::size_t i, const PairSums& s) const {
+        f[i] = s.f;
         if constexpr (Sample) {
-            energy[i] = 0.5 * ei;
-            virial[i] = 0.5 * wi;
+            energy[i] = 0.5 * s.energy;
+            virial[i] = 0.5 * s.virial;
         }
     }
+
+    EMERGENT_HD void operator()(std::size_t i) const { store(i, partial(i, 0, 1)); }
 };
 
 }  // namespace emergent::force

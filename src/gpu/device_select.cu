@@ -52,6 +52,13 @@ DeviceInfo select_device() {
     return info;
 }
 
+int lanes_for(std::size_t particles, double mean_neighbours, int multiprocessors) {
+    const double wanted = 2048.0 * multiprocessors;
+    int lanes = 1;
+    while (lanes < 32 && double(particles) * lanes < wanted && mean_neighbours >= 3.0 * (2 * lanes)) lanes *= 2;
+    return lanes;
+}
+
 std::size_t device_memory_in_use() {
     std::size_t free = 0, total = 0;
     EMERGENT_CUDA_CHECK(cudaMemGetInfo(&free, &total));

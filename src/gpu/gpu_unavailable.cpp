@@ -16,6 +16,7 @@ namespace {
 bool device_present() { return false; }
 DeviceInfo select_device() { refuse(); }
 std::size_t device_memory_in_use() { refuse(); }
+int lanes_for(std::size_t, double, int) { refuse(); }
 double copy_bandwidth(std::size_t, int) { refuse(); }
 
 struct PeriodicPairSystem::Impl {};
@@ -26,6 +27,7 @@ PeriodicPairSystem::PeriodicPairSystem(const PairSystemSpec&, const std::vector<
 PeriodicPairSystem::~PeriodicPairSystem() = default;
 void PeriodicPairSystem::run(long) { refuse(); }
 Thermo PeriodicPairSystem::thermo() { refuse(); }
+void PeriodicPairSystem::scale_velocities(double) { refuse(); }
 std::vector<Vec3> PeriodicPairSystem::positions() const { refuse(); }
 std::vector<Vec3> PeriodicPairSystem::velocities() const { refuse(); }
 std::size_t PeriodicPairSystem::size() const { refuse(); }

@@ -16,6 +16,7 @@
 #include "execution/cuda_launch.cuh"
 #include "force/lennard_jones.hpp"
 #include "force/pair_full_list.hpp"
+#include "gpu/build_list_split.cuh"
 #include "gpu/device_buffer.cuh"
 #include "gpu/device_cells.hpp"
 #include "integrate/velocity_verlet.hpp"
@@ -94,6 +95,7 @@ struct PeriodicPairSystem::Impl {
     cudaEvent_t flag_ready = nullptr;
 
     std::uint32_t capacity = 0;
+    int multiprocessors = 1;
     ListStats stats;
     bool profiling = false;
     StepProfile prof;
@@ -117,11 +119,19 @@ struct PeriodicPairSystem::Impl {
             image.length[d] = s.box[d];
             image.inverse[d] = 1 / s.box[d];
         }
-        select_device();
+        multiprocessors = select_device().multiprocessors;
+        if (s.lanes_per_particle != 0 && (s.lanes_per_particle < 1 || s.lanes_per_particle > 32 ||
+                                          (s.lanes_per_particle & (s.lanes_per_particle - 1)) != 0))
+            throw std::invalid_argument("lanes_per_particle=" + std::to_string(s.lanes_per_particle) +
+                                        " must be 0 (automatic) or a power of 2 up to 32");
         flag_host = std::make_unique<PinnedValue<int>>();
         EMERGENT_CUDA_CHECK(cudaStreamCreateWithFlags(&stream, cudaStreamNonBlocking));
         EMERGENT_CUDA_CHECK(cudaEventCreateWithFlags(&flag_ready, cudaEventDisableTiming));
         on_device.stream = stream;
+        if (s.block_size < 32 || s.block_size > 1024 || s.block_size % 32 != 0)
+            throw std::invalid_argument("block_size=" + std::to_string(s.block_size) +
+                                        " must be a multiple of 32 in 32 .. 1024");
+        on_device.block_size = s.block_size;
 
         upload(x, x0, stream);
         upload(v, v0, stream);
@@ -198,16 +208,15 @@ struct PeriodicPairSystem::Impl {
         EMERGENT_CUDA_CHECK(cudaMemsetAsync(cell_end.data(), 0, cell_end.bytes(), stream));
         exec::for_each(on_device, n, CellRanges{x.data(), key_sorted.data(), n, grid, cell_start.data(),
                                                 cell_end.data()});
+        // Candidates per particle: the particles of 27 cells.
+        const int build_lanes = spec.lanes_per_particle > 0
+                                    ? spec.lanes_per_particle
+                                    : lanes_for(n, 27.0 * double(n) / double(grid.cells()), multiprocessors);
         for (;;) {
-            if (capacity > 0)
-                exec::for_each(on_device, n,
-                               BuildFullList{x.data(), grid, cell_start.data(), cell_end.data(), image,
-                                             list_cutoff * list_cutoff, capacity, n, nb_count.data(),
-                                             nb_index.data()});
-            else
-                exec::for_each(on_device, n,
-                               BuildFullList{x.data(), grid, cell_start.data(), cell_end.data(), image,
-                                             list_cutoff * list_cutoff, 0, n, nb_count.data(), nullptr});
+            build_list_split(on_device, n, build_lanes,
+                             BuildFullList{x.data(), grid, cell_start.data(), cell_end.data(), image,
+                                           list_cutoff * list_cutoff, capacity, n, nb_count.data(),
+                                           capacity > 0 ? nb_index.data() : nullptr});
             std::size_t rb = reduce_scratch.size();
             EMERGENT_CUDA_CHECK(cub::DeviceReduce::Max(reduce_scratch.data(), rb, nb_count.data(),
                                                        count_stats.data(), ni, stream));
@@ -224,6 +233,9 @@ struct PeriodicPairSystem::Impl {
             nb_index.resize(std::size_t(capacity) * n);
         }
         stats.capacity = capacity;
+        stats.lanes = spec.lanes_per_particle > 0
+                          ? spec.lanes_per_particle
+                          : lanes_for(n, stats.mean_neighbours, multiprocessors);
         ++stats.builds;
         EMERGENT_CUDA_CHECK(cudaMemcpyAsync(x_build.data(), x.data(), x.bytes(), cudaMemcpyDeviceToDevice, stream));
     }
@@ -236,7 +248,7 @@ struct PeriodicPairSystem::Impl {
             pf.energy = per_particle_a.data();
             pf.virial = per_particle_b.data();
         }
-        exec::for_each(on_device, n, pf);
+        exec::for_each_split(on_device, n, stats.lanes, pf);
     }
 
     void force(bool sample) {
@@ -325,6 +337,14 @@ Thermo PeriodicPairSystem::thermo() {
                                                    m.per_particle_a.data()});
     t.kinetic = m.sum(m.per_particle_a);
     return t;
+}
+
+void PeriodicPairSystem::scale_velocities(double factor) {
+    Impl& m = *impl_;
+    exec::for_each(m.on_device, m.n, integrate::ScaleVelocity{m.v.data(), factor});
+    // The rebuild prediction used the old velocities: make it again.
+    m.with_rebuild_check(m.rebuild_check());
+    EMERGENT_CUDA_CHECK(cudaStreamSynchronize(m.stream));
 }
 
 std::vector<Vec3> PeriodicPairSystem::positions() const {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <tuple>
 
 #include "emergent/gpu.hpp"
 #include "support/fluid_start.hpp"
@@ -89,11 +90,11 @@ TEST(GpuPath, RefusesClearlyWithoutADevice) {
     }
 }
 
-class GpuVersusAllPairs : public ::testing::TestWithParam<double> {};
+class GpuVersusAllPairs : public ::testing::TestWithParam<std::tuple<double, int>> {};
 
 TEST_P(GpuVersusAllPairs, TrajectoriesAgreeOver100Steps) {
     SKIP_WITHOUT_DEVICE();
-    const double cutoff = GetParam();
+    const double cutoff = std::get<0>(GetParam());
     // 2048 atoms at rho = 0.8, T = 1.5: a liquid; jitter breaks the lattice's symmetry.
     const auto start = fixtures::fcc_fluid(8, 0.8, 1.5, 0.2, 17);
     gpu::PairSystemSpec spec;
@@ -101,6 +102,7 @@ TEST_P(GpuVersusAllPairs, TrajectoriesAgreeOver100Steps) {
     spec.cutoff = cutoff;
     spec.skin = 0.08;  // small: the list is rebuilt (and the particles reordered) many times
     spec.dt = 0.005;
+    spec.lanes_per_particle = std::get<1>(GetParam());
     gpu::PeriodicPairSystem sys(spec, start.x, start.v);
     AllPairsReference ref(start, cutoff);
 
@@ -123,12 +125,15 @@ TEST_P(GpuVersusAllPairs, TrajectoriesAgreeOver100Steps) {
     RecordProperty("max_position_difference", std::to_string(dx));
     RecordProperty("max_velocity_difference", std::to_string(dv));
     RecordProperty("list_builds", std::to_string(sys.list_stats().builds));
-    std::printf("rc %.4f: max |dx| %.3e, max |dv| %.3e, %ld list builds\n", cutoff, dx, dv,
-                sys.list_stats().builds);
+    std::printf("rc %.4f, %d lanes per particle: max |dx| %.3e, max |dv| %.3e, %ld list builds\n",
+                cutoff, sys.list_stats().lanes, dx, dv, sys.list_stats().builds);
 }
 
-// WCA (the benchmark's interaction) and LJ at rc = 2.5 (~75 neighbours per atom).
-INSTANTIATE_TEST_SUITE_P(Cutoffs, GpuVersusAllPairs, ::testing::Values(1.122462048309373, 2.5));
+// WCA (the benchmark's interaction) and LJ at rc = 2.5 (~57 neighbours per atom), with the
+// automatic threads per particle (2 and 8 here), one thread, and a whole warp per particle.
+INSTANTIATE_TEST_SUITE_P(Cutoffs, GpuVersusAllPairs,
+                         ::testing::Values(std::make_tuple(1.122462048309373, 0), std::make_tuple(2.5, 0),
+                                           std::make_tuple(2.5, 1), std::make_tuple(2.5, 32)));
 
 namespace {
 
