@@ -23,6 +23,10 @@ for png in "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-ra
   [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || { echo "FAIL: $png is not a PNG"; exit 1; }
   [ "$(stat -c %s "$png")" -gt 10000 ] || { echo "FAIL: $png is nearly empty"; exit 1; }
 done
+# The GPU work-precision diagram from the measured table kept in benchmarks/logs.
+"$scripts/plot_gpu_work_precision" "$scripts/../benchmarks/logs/gpu_work_precision_h100.csv" \
+  "$dir/gpu_wp.png" >/dev/null
+[ "$(stat -c %s "$dir/gpu_wp.png")" -gt 10000 ] || { echo "FAIL: gpu_wp.png is nearly empty"; exit 1; }
 /usr/bin/python3 - "$dir" "$scripts" <<'PY'
 import sys
 sys.path.insert(0, sys.argv[2])
