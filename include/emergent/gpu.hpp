@@ -53,6 +53,9 @@ struct PairSystemSpec {
     double dt = 0.005;
     double mass = 1;
     Precision precision = Precision::Double;
+    /// A run stops (InstabilityError) when a force exceeds this (0: no bound); the engine's
+    /// guard.max_force default.
+    double max_force = 1e5;
     int block_size = 256;  ///< threads per block of every per-particle kernel
     /// GPU threads sharing one particle's neighbour sum (1, 2, 4, ... 32); 0 chooses from the
     /// particle count and the mean neighbour count at each list build (see lanes_for()).
@@ -90,6 +93,9 @@ class PeriodicPairSystem {
     PeriodicPairSystem& operator=(const PeriodicPairSystem&) = delete;
 
     /// Advances `steps` velocity-Verlet steps; returns when the device has finished them.
+    /// Throws InstabilityError when a position, velocity or force becomes non-finite or a force
+    /// exceeds spec.max_force (checked on the device every step, in the pass that decides the
+    /// rebuilds).
     void run(long steps);
     /// Energies and virial of the current state (one extra force pass with sampling on).
     Thermo thermo();

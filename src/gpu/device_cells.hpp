@@ -165,10 +165,15 @@ struct BuildFullList {
     }
 };
 
-/// Sets *flag when some particle will have moved more than half the skin since the last build
-/// after the next drift. The next drift is known exactly at the end of a step (x + dt (v + dt/2
-/// f/m)), so the decision for step n+1 is taken on the device at the end of step n and the host
-/// reads it while step n+1's first kernel runs.
+/// What the end-of-step check found (bits of *flag).
+enum StepCheck : int { kRebuildNext = 1, kNotFinite = 2, kForceBound = 4 };
+
+/// Sets kRebuildNext in *flag when some particle will have moved more than half the skin since
+/// the last build after the next drift, and kNotFinite when a position, velocity or force is
+/// NaN or infinite, and kForceBound when a force exceeds the bound (overlaps; the caller stops
+/// on either). The next drift is known exactly at
+/// the end of a step (x + dt (v + dt/2 f/m)), so the decision for step n+1 is taken on the
+/// device at the end of step n and the host reads it while step n+1's first kernel runs.
 struct PredictedDisplacementExceeds {
     const Vec3* x;
     const Vec3* v;
@@ -178,13 +183,26 @@ struct PredictedDisplacementExceeds {
     const Vec3* x_build;
     Real dt;
     Real limit_sq;
+    Real max_force_sq;
     int* flag;
     EMERGENT_HD void operator()(std::size_t i) const {
         const Real h = 0.5 * dt * inverse_mass[species[i]];
         const Vec3 next{x[i].x + dt * (v[i].x + h * f[i].x), x[i].y + dt * (v[i].y + h * f[i].y),
                         x[i].z + dt * (v[i].z + h * f[i].z)};
         const Vec3 d = next - x_build[i];
-        if (dot(d, d) > limit_sq) *flag = 1;  // every writer stores 1: no race on the value
+        const Real d2 = dot(d, d);
+        // A non-finite x, v or f makes d2 NaN or infinite; finite values compare as usual.
+        int bits = 0;
+        if (!(d2 <= limit_sq)) bits |= kRebuildNext;
+        if (!(d2 < 1e300)) bits |= kNotFinite;
+        if (dot(f[i], f[i]) > max_force_sq) bits |= kForceBound;
+        if (bits) {
+#ifdef __CUDA_ARCH__
+            atomicOr(flag, bits);
+#else
+            *flag |= bits;
+#endif
+        }
     }
 };
 

@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "emergent/gpu.hpp"
+#include "emergent/error.hpp"
 #include "emergent/execution.hpp"
 #include "execution/cuda_launch.cuh"
 #include "force/lennard_jones.hpp"
@@ -66,6 +68,12 @@ class PartTimer {
     cudaEvent_t a_{}, b_{};
 };
 
+std::string compact(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", v);
+    return buf;
+}
+
 }  // namespace
 
 struct PeriodicPairSystem::Impl {
@@ -96,6 +104,7 @@ struct PeriodicPairSystem::Impl {
 
     std::uint32_t capacity = 0;
     int multiprocessors = 1;
+    long steps_done = 0;
     ListStats stats;
     bool profiling = false;
     StepProfile prof;
@@ -267,7 +276,7 @@ struct PeriodicPairSystem::Impl {
         // compiler may contract it differently; rebuilding a little early is always safe.
         const Real limit_sq = 0.99 * 0.25 * spec.skin * spec.skin;
         return {x.data(), v.data(), f.data(), species.data(), inverse_mass.data(), x_build.data(), spec.dt,
-                limit_sq, flag.data()};
+                limit_sq, spec.max_force > 0 ? spec.max_force * spec.max_force : HUGE_VAL, flag.data()};
     }
 
     /// Runs `pass` (which sets the flag when the next step must rebuild) and sends the flag to
@@ -289,7 +298,16 @@ struct PeriodicPairSystem::Impl {
         }
         // The device decided at the end of the last step; the drift above runs meanwhile.
         EMERGENT_CUDA_CHECK(cudaEventSynchronize(flag_ready));
-        if (flag_host->value()) {
+        const int found = flag_host->value();
+        if (found & kNotFinite)
+            throw InstabilityError("run stopped: a position, velocity or force on the GPU became "
+                                   "non-finite after step " + std::to_string(steps_done) +
+                                   " (the run went unstable: reduce dt or check the initial state)");
+        if (found & kForceBound)
+            throw InstabilityError("run stopped: a force on the GPU exceeds max_force=" +
+                                   compact(spec.max_force) + " after step " + std::to_string(steps_done) +
+                                   " (overlapping particles, or the run went unstable: reduce dt)");
+        if (found & kRebuildNext) {
             PartTimer t(profiling, stream, prof.rebuild);
             rebuild();
         }
@@ -303,6 +321,7 @@ struct PeriodicPairSystem::Impl {
             with_rebuild_check(exec::Then<integrate::Kick, PredictedDisplacementExceeds>{
                 {v.data(), f.data(), species.data(), inverse_mass.data(), spec.dt}, rebuild_check()});
         }
+        ++steps_done;
         if (profiling) ++prof.steps;
     }
 

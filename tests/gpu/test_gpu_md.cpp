@@ -7,8 +7,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <tuple>
 
+#include "emergent/error.hpp"
 #include "emergent/gpu.hpp"
 #include "support/fluid_start.hpp"
 
@@ -197,4 +199,61 @@ TEST(GpuPath, RejectsABoxTooSmallForTheCellGrid) {
     spec.box = s.box;
     spec.cutoff = 2.5;
     EXPECT_THROW(gpu::PeriodicPairSystem(spec, s.x, s.v), std::invalid_argument);
+}
+
+TEST(GpuPath, SameInputGivesBitwiseTheSameTrajectory) {
+    SKIP_WITHOUT_DEVICE();
+    // No atomics in any sum, a stable radix sort and fixed reduction trees: on one device with
+    // the same N, lanes and block size, the run is reproducible bit for bit.
+    const auto start = fixtures::fcc_fluid(10, 0.8, 1.5, 0.1, 23);
+    gpu::PairSystemSpec spec;
+    spec.box = start.box;
+    spec.skin = 0.1;
+    gpu::PeriodicPairSystem a(spec, start.x, start.v), b(spec, start.x, start.v);
+    a.run(2000);
+    b.run(2000);
+    EXPECT_GE(a.list_stats().builds, 20);
+    const auto xa = a.positions(), xb = b.positions(), va = a.velocities(), vb = b.velocities();
+    EXPECT_EQ(0, std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(Vec3)));
+    EXPECT_EQ(0, std::memcmp(va.data(), vb.data(), va.size() * sizeof(Vec3)));
+}
+
+TEST(GpuPath, StopsWithAClearMessageWhenTheRunBlowsUp) {
+    SKIP_WITHOUT_DEVICE();
+    // T = 50 with dt = 0.2 (the CPU guard test's case): particles step deep into each other and
+    // the forces pass the bound (1e5) long before they overflow.
+    const auto start = fixtures::fcc_fluid(6, 0.8, 50.0, 0.0, 29);
+    gpu::PairSystemSpec spec;
+    spec.box = start.box;
+    spec.dt = 0.2;
+    gpu::PeriodicPairSystem sys(spec, start.x, start.v);
+    try {
+        sys.run(2000);
+        FAIL() << "a run at dt = 0.2, T = 50 went on";
+    } catch (const InstabilityError& e) {
+        EXPECT_NE(std::string(e.what()).find("run stopped: a force on the GPU exceeds max_force"),
+                  std::string::npos) << e.what();
+        std::printf("%s\n", e.what());
+    }
+}
+
+TEST(GpuPath, StopsOnNonFiniteStateWithoutAForceBound) {
+    SKIP_WITHOUT_DEVICE();
+    auto start = fixtures::fcc_fluid(6, 0.8, 1.0, 0.0, 31);
+    start.v[17].y = std::nan("");
+    gpu::PairSystemSpec spec;
+    spec.box = start.box;
+    spec.max_force = 0;
+    gpu::PeriodicPairSystem sys(spec, start.x, start.v);
+    EXPECT_THROW(
+        {
+            try {
+                sys.run(10);
+            } catch (const InstabilityError& e) {
+                EXPECT_NE(std::string(e.what()).find("became non-finite after step 0"), std::string::npos)
+                    << e.what();
+                throw;
+            }
+        },
+        InstabilityError);
 }

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 #include <numeric>
 #include <set>
 
@@ -171,4 +173,35 @@ TEST(DeviceCells, WrapCountsImages) {
     EXPECT_DOUBLE_EQ(x[1].y, 9.5);
     EXPECT_EQ(img[1].y, -2);
     EXPECT_EQ(img[1].z, -2);  // inside: untouched
+}
+
+TEST(DeviceCells, EndOfStepCheckFlagsRebuildsAndNonFiniteStates) {
+    const double nan = std::nan("");
+    Vec3 x[3] = {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+    Vec3 v[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    Vec3 f[3] = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
+    const Vec3 x_build[3] = {{1, 1, 1}, {2, 2, 2}, {3, 3, 3}};
+    const int species[3] = {0, 0, 0};
+    const Real inverse_mass[1] = {1};
+    int flag = 0;
+    auto check = [&] {
+        flag = 0;
+        exec::for_each(exec::Host{}, 3,
+                       gpu::PredictedDisplacementExceeds{x, v, f, species, inverse_mass, x_build, 0.005,
+                                                         0.15 * 0.15, 1e10, &flag});
+        return flag;
+    };
+    EXPECT_EQ(check(), 0);                     // at rest
+    v[1] = {31, 0, 0};                         // next drift moves it 0.155 > 0.15
+    EXPECT_EQ(check(), gpu::kRebuildNext);
+    v[1] = {29, 0, 0};                         // 0.145
+    EXPECT_EQ(check(), 0);
+    f[2] = {0, nan, 0};                        // a NaN force
+    EXPECT_EQ(check(), gpu::kRebuildNext | gpu::kNotFinite);
+    f[2] = {0, 0, 0};
+    x[0].z = std::numeric_limits<double>::infinity();
+    EXPECT_EQ(check() & gpu::kNotFinite, gpu::kNotFinite);
+    x[0].z = 1;
+    f[0] = {0, 0, 1.1e5};                      // beyond the force bound of 1e5
+    EXPECT_EQ(check() & gpu::kForceBound, gpu::kForceBound);
 }
