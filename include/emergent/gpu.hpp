@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "emergent/thermostat.hpp"
 #include "emergent/vec3.hpp"
 
 namespace emergent::gpu {
@@ -101,6 +102,10 @@ class PeriodicPairSystem {
     Thermo thermo();
     /// v *= factor for every particle (the engine's velocity-rescaling functor).
     void scale_velocities(double factor);
+    /// Rescales velocities every `interval` steps by the thermostat's factor (the engine's
+    /// Thermostat, e.g. make_bussi_thermostat; 3N - 3 degrees of freedom, its random stream
+    /// keyed by the step index). Each application costs one reduction and a host round trip.
+    void set_thermostat(std::unique_ptr<Thermostat> thermostat, int interval = 1);
     /// Unwrapped positions and velocities in id order.
     std::vector<Vec3> positions() const;
     std::vector<Vec3> velocities() const;

@@ -28,6 +28,7 @@ PeriodicPairSystem::~PeriodicPairSystem() = default;
 void PeriodicPairSystem::run(long) { refuse(); }
 Thermo PeriodicPairSystem::thermo() { refuse(); }
 void PeriodicPairSystem::scale_velocities(double) { refuse(); }
+void PeriodicPairSystem::set_thermostat(std::unique_ptr<Thermostat>, int) { refuse(); }
 std::vector<Vec3> PeriodicPairSystem::positions() const { refuse(); }
 std::vector<Vec3> PeriodicPairSystem::velocities() const { refuse(); }
 std::size_t PeriodicPairSystem::size() const { refuse(); }

@@ -105,6 +105,8 @@ struct PeriodicPairSystem::Impl {
     std::uint32_t capacity = 0;
     int multiprocessors = 1;
     long steps_done = 0;
+    std::unique_ptr<Thermostat> thermostat;
+    int thermostat_interval = 1;
     ListStats stats;
     bool profiling = false;
     StepProfile prof;
@@ -322,7 +324,19 @@ struct PeriodicPairSystem::Impl {
                 {v.data(), f.data(), species.data(), inverse_mass.data(), spec.dt}, rebuild_check()});
         }
         ++steps_done;
+        if (thermostat && steps_done % thermostat_interval == 0) {
+            PartTimer t(profiling, stream, prof.kick);
+            const double dof = 3.0 * double(n) - 3.0;  // total momentum is conserved
+            const double factor = thermostat->scale_factor(kinetic(), dof, steps_done, spec.dt * thermostat_interval);
+            exec::for_each(on_device, n, integrate::ScaleVelocity{v.data(), factor});
+            with_rebuild_check(rebuild_check());  // the check ran on the velocities before
+        }
         if (profiling) ++prof.steps;
+    }
+
+    double kinetic() {
+        exec::for_each(on_device, n, KineticEnergy{v.data(), species.data(), mass.data(), per_particle_a.data()});
+        return sum(per_particle_a);
     }
 
     double sum(const DeviceBuffer<Real>& a) {
@@ -352,9 +366,7 @@ Thermo PeriodicPairSystem::thermo() {
     m.force(true);  // same forces as the step's; energy and virial beside them
     t.potential = m.sum(m.per_particle_a);
     t.virial = m.sum(m.per_particle_b);
-    exec::for_each(m.on_device, m.n, KineticEnergy{m.v.data(), m.species.data(), m.mass.data(),
-                                                   m.per_particle_a.data()});
-    t.kinetic = m.sum(m.per_particle_a);
+    t.kinetic = m.kinetic();
     return t;
 }
 
@@ -364,6 +376,12 @@ void PeriodicPairSystem::scale_velocities(double factor) {
     // The rebuild prediction used the old velocities: make it again.
     m.with_rebuild_check(m.rebuild_check());
     EMERGENT_CUDA_CHECK(cudaStreamSynchronize(m.stream));
+}
+
+void PeriodicPairSystem::set_thermostat(std::unique_ptr<Thermostat> thermostat, int interval) {
+    if (interval < 1) throw std::invalid_argument("thermostat interval must be >= 1");
+    impl_->thermostat = std::move(thermostat);
+    impl_->thermostat_interval = interval;
 }
 
 std::vector<Vec3> PeriodicPairSystem::positions() const {
