@@ -16,11 +16,10 @@ FieldAccumulator::FieldAccumulator(const FieldGrid& grid)
 
 void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>& species_mass,
                            const Box& box) {
-    const Vec3 len = box.length();
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
-        Vec3 x = store.position[i];
-        for (int d = 0; d < 3; ++d)
-            if (box.periodic[d]) x[d] -= len[d] * std::floor((x[d] - box.lo[d]) / len[d]);
+        // Between list builds owned particles may sit just past a periodic face; a hair below
+        // lo must land at lo, not round up to hi (outside every cell).
+        const Vec3 x = box.primary_image(store.position[i]);
         const int c = grid_.cell_of(x);
         if (c < 0) continue;
         const double m = species_mass[store.species[i]];

@@ -124,3 +124,23 @@ TEST(FieldAccumulator, CylindricalCellsHaveTheRightVolumeAndRotation) {
         EXPECT_NEAR(f.velocity[3 * c + 2], 0.0, 5 * se) << "cell " << c;
     }
 }
+
+TEST(FieldAccumulator, ParticlesJustPastAPeriodicFaceAreCounted) {
+    // Between list builds owned particles may lie a little outside the periodic box; one a
+    // hair below lo wraps to exactly hi in floating point, which no cell holds.
+    Box box;
+    box.hi = {10, 10, 10};
+    FieldGrid grid;
+    grid.n = {2, 1, 1};
+    grid.hi = box.hi;
+    FieldAccumulator acc(grid);
+    ParticleStore s;
+    s.add_owned({-1e-17, 5, 5}, {1, 0, 0}, 0, 0);  // -1e-17 + 10 == 10 in double
+    s.add_owned({10.25, 5, 5}, {1, 0, 0}, 0, 1);   // past hi: the first cell
+    s.add_owned({-0.5, 5, 5}, {1, 0, 0}, 0, 2);    // below lo: the last cell
+    acc.add(s, {1.0}, box);
+    const FieldFrame f = acc.take(MPI_COMM_SELF);
+    EXPECT_EQ(f.count[0] + f.count[1], 3);
+    EXPECT_EQ(f.count[0], 2);  // -1e-17 lands at lo, 10.25 at 0.25
+    EXPECT_EQ(f.count[1], 1);
+}
