@@ -323,14 +323,16 @@ struct PeriodicPairSystem::Impl {
             with_rebuild_check(exec::Then<integrate::Kick, PredictedDisplacementExceeds>{
                 {v.data(), f.data(), species.data(), inverse_mass.data(), spec.dt}, rebuild_check()});
         }
-        ++steps_done;
-        if (thermostat && steps_done % thermostat_interval == 0) {
+        if (thermostat && (steps_done + 1) % thermostat_interval == 0) {
+            // As the CPU engine: after the second kick, keyed by the index of the step before
+            // it is counted.
             PartTimer t(profiling, stream, prof.kick);
             const double dof = 3.0 * double(n) - 3.0;  // total momentum is conserved
             const double factor = thermostat->scale_factor(kinetic(), dof, steps_done, spec.dt * thermostat_interval);
             exec::for_each(on_device, n, integrate::ScaleVelocity{v.data(), factor});
             with_rebuild_check(rebuild_check());  // the check ran on the velocities before
         }
+        ++steps_done;
         if (profiling) ++prof.steps;
     }
 
