@@ -206,6 +206,14 @@ struct PredictedDisplacementExceeds {
     }
 };
 
+/// out[i] = in[i] as a Real: integer counts summed without overflow.
+template <class T>
+struct Widen {
+    const T* in;
+    Real* out;
+    EMERGENT_HD void operator()(std::size_t i) const { out[i] = static_cast<Real>(in[i]); }
+};
+
 /// Per-particle m v^2 / 2, summed by the caller.
 struct KineticEnergy {
     const Vec3* v;

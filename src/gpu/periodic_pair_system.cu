@@ -163,7 +163,7 @@ struct PeriodicPairSystem::Impl {
         per_particle_a.resize(n);
         per_particle_b.resize(n);
         sums.resize(2);
-        count_stats.resize(2);
+        count_stats.resize(1);
         flag.resize(1);
         reserve_scratch();
 
@@ -179,7 +179,7 @@ struct PeriodicPairSystem::Impl {
     }
 
     void reserve_scratch() {
-        std::size_t sort_bytes = 0, sum_bytes = 0, max_bytes = 0, count_bytes = 0;
+        std::size_t sort_bytes = 0, sum_bytes = 0, max_bytes = 0;
         EMERGENT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, sort_bytes, key.data(), key_sorted.data(),
                                                             order.data(), order_sorted.data(),
                                                             static_cast<int>(n), 0, 30, stream));
@@ -187,10 +187,8 @@ struct PeriodicPairSystem::Impl {
                                                    static_cast<int>(n), stream));
         EMERGENT_CUDA_CHECK(cub::DeviceReduce::Max(nullptr, max_bytes, nb_count.data(), count_stats.data(),
                                                    static_cast<int>(n), stream));
-        EMERGENT_CUDA_CHECK(cub::DeviceReduce::Sum(nullptr, count_bytes, nb_count.data(),
-                                                   count_stats.data() + 1, static_cast<int>(n), stream));
         sort_scratch.resize(sort_bytes);
-        reduce_scratch.resize(std::max({sum_bytes, max_bytes, count_bytes}));
+        reduce_scratch.resize(std::max(sum_bytes, max_bytes));
     }
 
     /// Wrap, sort by cell along the Z curve, reorder every per-particle array, find the cell
@@ -231,13 +229,17 @@ struct PeriodicPairSystem::Impl {
             std::size_t rb = reduce_scratch.size();
             EMERGENT_CUDA_CHECK(cub::DeviceReduce::Max(reduce_scratch.data(), rb, nb_count.data(),
                                                        count_stats.data(), ni, stream));
+            // The total in double: N x neighbours passes 2^32 at ~45 million LJ atoms.
+            exec::for_each(on_device, n, Widen<std::uint32_t>{nb_count.data(), per_particle_a.data()});
             rb = reduce_scratch.size();
-            EMERGENT_CUDA_CHECK(cub::DeviceReduce::Sum(reduce_scratch.data(), rb, nb_count.data(),
-                                                       count_stats.data() + 1, ni, stream));
-            std::uint32_t host[2];
+            EMERGENT_CUDA_CHECK(cub::DeviceReduce::Sum(reduce_scratch.data(), rb, per_particle_a.data(),
+                                                       sums.data(), ni, stream));
+            std::uint32_t host[1];
+            double total = 0;
             EMERGENT_CUDA_CHECK(cudaMemcpyAsync(host, count_stats.data(), sizeof host, cudaMemcpyDeviceToHost, stream));
+            EMERGENT_CUDA_CHECK(cudaMemcpyAsync(&total, sums.data(), sizeof total, cudaMemcpyDeviceToHost, stream));
             EMERGENT_CUDA_CHECK(cudaStreamSynchronize(stream));
-            stats.mean_neighbours = double(host[1]) / double(n);
+            stats.mean_neighbours = total / double(n);
             if (host[0] <= capacity && capacity > 0) break;
             // Room for density fluctuations until the next build, in whole warps' worth of slots.
             capacity = ((host[0] + host[0] / 8 + 8) + 31) / 32 * 32;
