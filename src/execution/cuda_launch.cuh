@@ -9,6 +9,7 @@
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace emergent::exec {
 
@@ -68,23 +69,37 @@ __global__ void for_each_split_kernel(std::size_t n, Functor f) {
     if (i < n && lane == 0) f.store(i, s);
 }
 
+/// Calls f(std::integral_constant<int, L>{}) for the run-time lanes per particle L (2, 4, 8, 16
+/// or 32): the one place a lane count becomes a kernel's template argument.
+template <class F>
+void with_lanes(int lanes, F&& f) {
+    switch (lanes) {
+        case 2: f(std::integral_constant<int, 2>{}); break;
+        case 4: f(std::integral_constant<int, 4>{}); break;
+        case 8: f(std::integral_constant<int, 8>{}); break;
+        case 16: f(std::integral_constant<int, 16>{}); break;
+        case 32: f(std::integral_constant<int, 32>{}); break;
+        default: throw std::invalid_argument("lanes per particle must be 1, 2, 4, 8, 16 or 32");
+    }
+}
+
+/// Blocks of the backend's size for `lanes` threads per particle over n particles.
+inline unsigned blocks_for(const Cuda& backend, std::size_t n, int lanes) {
+    const std::size_t threads = n * static_cast<std::size_t>(lanes);
+    return static_cast<unsigned>((threads + backend.block_size - 1) / backend.block_size);
+}
+
 /// For functors whose work for particle i is a sum over its neighbours (partial(i, first,
 /// stride) and store(i, sum)): `lanes` threads of a warp share each particle and add their
 /// partial sums by shuffles. More threads in flight when particles are few or neighbours many.
 template <class Functor>
 void for_each_split(Cuda backend, std::size_t n, int lanes, const Functor& f) {
+    if (lanes == 1) return for_each(backend, n, f);
     if (n == 0) return;
-    const std::size_t threads = n * static_cast<std::size_t>(lanes);
-    const unsigned blocks = static_cast<unsigned>((threads + backend.block_size - 1) / backend.block_size);
-    switch (lanes) {
-        case 1: for_each_kernel<<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
-        case 2: for_each_split_kernel<2><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
-        case 4: for_each_split_kernel<4><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
-        case 8: for_each_split_kernel<8><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
-        case 16: for_each_split_kernel<16><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
-        case 32: for_each_split_kernel<32><<<blocks, backend.block_size, 0, backend.stream>>>(n, f); break;
-        default: throw std::invalid_argument("lanes per particle must be 1, 2, 4, 8, 16 or 32");
-    }
+    with_lanes(lanes, [&](auto width) {
+        for_each_split_kernel<decltype(width)::value>
+            <<<blocks_for(backend, n, lanes), backend.block_size, 0, backend.stream>>>(n, f);
+    });
     EMERGENT_CUDA_CHECK(cudaGetLastError());
 }
 

@@ -40,18 +40,12 @@ __global__ void build_list_split_kernel(std::size_t n, BuildFullList b) {
 
 /// Builds the list with `lanes` threads per particle (1 runs the functor itself).
 inline void build_list_split(exec::Cuda backend, std::size_t n, int lanes, const BuildFullList& b) {
+    if (lanes == 1) return exec::for_each(backend, n, b);
     if (n == 0) return;
-    const std::size_t threads = n * static_cast<std::size_t>(lanes);
-    const unsigned blocks = static_cast<unsigned>((threads + backend.block_size - 1) / backend.block_size);
-    switch (lanes) {
-        case 1: exec::for_each(backend, n, b); return;
-        case 2: build_list_split_kernel<2><<<blocks, backend.block_size, 0, backend.stream>>>(n, b); break;
-        case 4: build_list_split_kernel<4><<<blocks, backend.block_size, 0, backend.stream>>>(n, b); break;
-        case 8: build_list_split_kernel<8><<<blocks, backend.block_size, 0, backend.stream>>>(n, b); break;
-        case 16: build_list_split_kernel<16><<<blocks, backend.block_size, 0, backend.stream>>>(n, b); break;
-        case 32: build_list_split_kernel<32><<<blocks, backend.block_size, 0, backend.stream>>>(n, b); break;
-        default: throw std::invalid_argument("lanes per particle must be 1, 2, 4, 8, 16 or 32");
-    }
+    exec::with_lanes(lanes, [&](auto width) {
+        build_list_split_kernel<decltype(width)::value>
+            <<<exec::blocks_for(backend, n, lanes), backend.block_size, 0, backend.stream>>>(n, b);
+    });
     EMERGENT_CUDA_CHECK(cudaGetLastError());
 }
 

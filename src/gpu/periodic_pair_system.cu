@@ -330,12 +330,16 @@ struct PeriodicPairSystem::Impl {
             // it is counted.
             PartTimer t(profiling, stream, prof.kick);
             const double dof = 3.0 * double(n) - 3.0;  // total momentum is conserved
-            const double factor = thermostat->scale_factor(kinetic(), dof, steps_done, spec.dt * thermostat_interval);
-            exec::for_each(on_device, n, integrate::ScaleVelocity{v.data(), factor});
-            with_rebuild_check(rebuild_check());  // the check ran on the velocities before
+            rescale(thermostat->scale_factor(kinetic(), dof, steps_done, spec.dt * thermostat_interval));
         }
         ++steps_done;
         if (profiling) ++prof.steps;
+    }
+
+    /// v *= factor, then the rebuild check again: it ran on the velocities before.
+    void rescale(double factor) {
+        exec::for_each(on_device, n, integrate::ScaleVelocity{v.data(), factor});
+        with_rebuild_check(rebuild_check());
     }
 
     double kinetic() {
@@ -375,11 +379,8 @@ Thermo PeriodicPairSystem::thermo() {
 }
 
 void PeriodicPairSystem::scale_velocities(double factor) {
-    Impl& m = *impl_;
-    exec::for_each(m.on_device, m.n, integrate::ScaleVelocity{m.v.data(), factor});
-    // The rebuild prediction used the old velocities: make it again.
-    m.with_rebuild_check(m.rebuild_check());
-    EMERGENT_CUDA_CHECK(cudaStreamSynchronize(m.stream));
+    impl_->rescale(factor);
+    EMERGENT_CUDA_CHECK(cudaStreamSynchronize(impl_->stream));
 }
 
 void PeriodicPairSystem::set_thermostat(std::unique_ptr<Thermostat> thermostat, int interval) {
