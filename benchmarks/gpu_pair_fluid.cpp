@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "emergent/gpu.hpp"
+#include "gpu_bench_support.hpp"
 #include "support/fluid_start.hpp"
 
 using namespace emergent;
@@ -36,17 +37,17 @@ Options parse(int argc, char** argv) {
             if (i + 1 >= argc) throw std::invalid_argument("option " + a + " needs a value");
             return argv[++i];
         };
-        if (a == "--cells") o.cells = std::stoi(value());
-        else if (a == "--density") o.density = std::stod(value());
-        else if (a == "--cutoff") o.cutoff = std::stod(value());
-        else if (a == "--skin") o.skin = std::stod(value());
-        else if (a == "--temperature") o.temperature = std::stod(value());
-        else if (a == "--dt") o.dt = std::stod(value());
-        else if (a == "--steps") o.steps = std::stol(value());
-        else if (a == "--warmup") o.warmup = std::stol(value());
-        else if (a == "--repeats") o.repeats = std::stoi(value());
-        else if (a == "--block") o.block = std::stoi(value());
-        else if (a == "--lanes") o.lanes = std::stoi(value());
+        if (a == "--cells") o.cells = bench::number<int>(a, value());
+        else if (a == "--density") o.density = bench::number<double>(a, value());
+        else if (a == "--cutoff") o.cutoff = bench::number<double>(a, value());
+        else if (a == "--skin") o.skin = bench::number<double>(a, value());
+        else if (a == "--temperature") o.temperature = bench::number<double>(a, value());
+        else if (a == "--dt") o.dt = bench::number<double>(a, value());
+        else if (a == "--steps") o.steps = bench::number<long>(a, value());
+        else if (a == "--warmup") o.warmup = bench::number<long>(a, value());
+        else if (a == "--repeats") o.repeats = bench::number<int>(a, value());
+        else if (a == "--block") o.block = bench::number<int>(a, value());
+        else if (a == "--lanes") o.lanes = bench::number<int>(a, value());
         else if (a == "--profile") o.profile = true;
         else if (a == "--precision") {
             const std::string p = value();
@@ -80,14 +81,9 @@ int main(int argc, char** argv) try {
     spec.lanes_per_particle = o.lanes;
     gpu::PeriodicPairSystem sys(spec, start.x, start.v);
     const double n = double(sys.size());
-    // Melt the lattice and bring the fluid to the requested temperature: the lattice's
-    // potential energy takes about half the initial kinetic energy, so rescale as it settles
-    // (ten rescalings, the last a tenth of the warm-up before timing).
-    for (int k = 0; k < 10; ++k) {
-        sys.run(std::max(1L, o.warmup / 10));
-        const double t = 2 * sys.thermo().kinetic / (3 * double(sys.size()));
-        sys.scale_velocities(std::sqrt(o.temperature / t));
-    }
+    // Melt the lattice at the requested temperature (the last rescaling a tenth of the warm-up
+    // before timing).
+    bench::bring_to_temperature(sys, o.temperature, o.warmup);
     const std::size_t peak = gpu::device_memory_in_use() - before;
 
     std::vector<double> rates;

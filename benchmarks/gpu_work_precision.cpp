@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "emergent/gpu.hpp"
+#include "gpu_bench_support.hpp"
 #include "support/fluid_start.hpp"
 
 using namespace emergent;
@@ -108,8 +109,8 @@ int main(int argc, char** argv) try {
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         if (i + 1 >= argc) throw std::invalid_argument("option " + a + " needs a value");
-        if (a == "--cells") cells = std::stoi(argv[++i]);
-        else if (a == "--tau") tau = std::stod(argv[++i]);
+        if (a == "--cells") cells = bench::number<int>(a, argv[++i]);
+        else if (a == "--tau") tau = bench::number<double>(a, argv[++i]);
         else if (a == "--csv") csv = argv[++i];
         else throw std::invalid_argument("unknown option '" + a + "'");
     }
@@ -133,11 +134,7 @@ int main(int argc, char** argv) try {
         std::vector<Vec3> x, v;
         {
             gpu::PeriodicPairSystem eq(spec, start.x, start.v);
-            for (int k = 0; k < 10; ++k) {
-                eq.run(200);
-                const double t = 2 * eq.thermo().kinetic / (3 * double(eq.size()));
-                eq.scale_velocities(std::sqrt(st.temperature / t));
-            }
+            bench::bring_to_temperature(eq, st.temperature, 2000);
             eq.run(200);
             x = eq.positions();
             v = eq.velocities();

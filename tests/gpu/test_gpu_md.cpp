@@ -109,6 +109,17 @@ TEST_P(GpuVersusAllPairs, TrajectoriesAgreeOver100Steps) {
     spec.lanes_per_particle = std::get<1>(GetParam());
     gpu::PeriodicPairSystem sys(spec, start.x, start.v);
     AllPairsReference ref(start, cutoff);
+    // The list statistics (they choose the threads per particle) count every pair within the
+    // list cutoff twice, at the start positions.
+    std::size_t pairs = 0;
+    const double rl = cutoff + spec.skin;
+    for (std::size_t i = 0; i < start.x.size(); ++i)
+        for (std::size_t j = i + 1; j < start.x.size(); ++j) {
+            Vec3 d = start.x[i] - start.x[j];
+            for (int a = 0; a < 3; ++a) d[a] -= spec.box[a] * std::nearbyint(d[a] / spec.box[a]);
+            pairs += dot(d, d) < rl * rl;
+        }
+    EXPECT_DOUBLE_EQ(sys.list_stats().mean_neighbours, 2.0 * pairs / start.x.size());
 
     const gpu::Thermo t0 = sys.thermo();
     // Same pair sums in another order: round-off only.
