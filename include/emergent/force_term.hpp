@@ -84,4 +84,21 @@ std::unique_ptr<ForceTerm> make_plane_wall(int axis, double position, int side,
                                            const GranularPair& contact, double range_factor = 1.0,
                                            const Vec3& wall_velocity = {0, 0, 0});
 
+/// The drum's curved wall: a cylinder about the z axis (through x = y = 0) of radius `radius`,
+/// spanning z_lo..z_hi, turning at `omega` about +z, made rough by spheres of diameter
+/// `sphere_diameter` embedded with their centres on it on a staggered grid of spacing `spacing`
+/// (nearest wall spheres `spacing` apart; rings spacing sqrt(3)/2 apart along z, alternate rings
+/// turned by half a step). Particles inside touch the wall spheres and the smooth surface
+/// through their centres with the contact law `contact` (range_factor as for pairs); the wall
+/// spheres move with the wall (their velocity enters damping and friction).
+struct RoughCylinder {
+    double radius = 10, z_lo = 0, z_hi = 10, omega = 0;
+    double spacing = 2.2, sphere_diameter = 1.0;
+};
+std::unique_ptr<ForceTerm> make_rough_cylinder_wall(const RoughCylinder& wall,
+                                                    const GranularPair& contact,
+                                                    double range_factor = 1.0);
+/// The wall spheres' centres at time t (for pictures and tests), ring by ring.
+std::vector<Vec3> rough_cylinder_spheres(const RoughCylinder& wall, double time);
+
 }  // namespace emergent

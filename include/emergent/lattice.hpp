@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include "emergent/vec3.hpp"
 
@@ -31,6 +32,15 @@ std::int64_t count_cubic_lattice(const Vec3& lo, const Vec3& hi, const Vec3& spa
 std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3& hi,
                                      std::int64_t target, const bool periodic[3],
                                      const std::function<bool(const Vec3&)>& inside);
+
+/// The spacing (per axis) at which the lattice of fill_cubic_lattice has `target` points, or
+/// within 0.1 % of it, inside the region (see fill_lattice_with_count).
+Vec3 spacing_for_count(const Vec3& lo, const Vec3& hi, std::int64_t target, const bool periodic[3],
+                       const std::function<bool(const Vec3&)>& inside);
+
+/// The lattice points fill_cubic_lattice would use, in its order (the same on every rank).
+std::vector<Vec3> cubic_lattice_points(const Vec3& lo, const Vec3& hi, const Vec3& spacing,
+                                       const std::function<bool(const Vec3&)>& inside);
 
 /// Fills the layer of wall_bounded_layer(lx, ly, height) with round(density lx ly height)
 /// particles (fill_lattice_with_count; whole lattice planes across x and y). Returns the count.

@@ -37,9 +37,8 @@ std::int64_t count_cubic_lattice(const Vec3& lo, const Vec3& hi, const Vec3& spa
     return count;
 }
 
-std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3& hi,
-                                     std::int64_t target, const bool periodic[3],
-                                     const std::function<bool(const Vec3&)>& inside) {
+Vec3 spacing_for_count(const Vec3& lo, const Vec3& hi, std::int64_t target, const bool periodic[3],
+                       const std::function<bool(const Vec3&)>& inside) {
     // The count falls in steps as the spacing grows: bracket the target, then bisect, and
     // keep the spacing whose count came closest.
     const Vec3 l = hi - lo;
@@ -58,7 +57,23 @@ std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3
         if (std::llabs(n - target) < std::llabs(best - target)) best = n, best_a = mid;
         (n >= target ? dense : sparse) = mid;
     }
-    return fill_cubic_lattice(sim, lo, hi, spacing_for(best_a, lo, hi, periodic), inside);
+    return spacing_for(best_a, lo, hi, periodic);
+}
+
+std::vector<Vec3> cubic_lattice_points(const Vec3& lo, const Vec3& hi, const Vec3& spacing,
+                                       const std::function<bool(const Vec3&)>& inside) {
+    std::vector<Vec3> points;
+    for_each_point(lo, hi, spacing, [&](const Vec3& x) {
+        if (inside(x)) points.push_back(x);
+    });
+    return points;
+}
+
+std::int64_t fill_lattice_with_count(Simulation& sim, const Vec3& lo, const Vec3& hi,
+                                     std::int64_t target, const bool periodic[3],
+                                     const std::function<bool(const Vec3&)>& inside) {
+    return fill_cubic_lattice(sim, lo, hi, spacing_for_count(lo, hi, target, periodic, inside),
+                              inside);
 }
 
 std::int64_t fill_cubic_lattice(Simulation& sim, const Vec3& lo, const Vec3& hi, const Vec3& spacing,
