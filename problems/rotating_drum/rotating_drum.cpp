@@ -161,30 +161,41 @@ public:
         std::vector<double> z(n), r(n);
         std::vector<char> big(n), small(n);
         double sums[3] = {0, 0, 0};  // x, y of the bed's centroid, count
-        // The core index leaves out the layer next to the curved wall, where big bodies' centres
-        // cannot come as close as small ones' (a geometric bias, not segregation).
-        const double interior = radius_ - 2 * clearance_;
-        std::vector<double> r_interior;
-        std::vector<char> small_interior;
         for (std::size_t i = 0; i < n; ++i) {
             const Vec3& x = b.position[i];
             z[i] = x.z;
             r[i] = std::hypot(x.x, x.y);
             big[i] = b.species[i] == big_;
             small[i] = !big[i];
-            if (r[i] < interior) r_interior.push_back(r[i]), small_interior.push_back(small[i]);
             sums[0] += x.x, sums[1] += x.y, sums[2] += 1;
         }
         double total[3];
         MPI_Allreduce(sums, total, 3, MPI_DOUBLE, MPI_SUM, sim.comm());
+        const double cx = total[2] > 0 ? total[0] / total[2] : 0, cy = total[2] > 0 ? total[1] / total[2] : 0;
+        // The small-particle core forms about the centre of the bed's circulation, with big
+        // particles both along the wall and along the free surface: the core index splits
+        // the bed by distance from its cross-section's centroid. It leaves out the layer next
+        // to the curved wall, where big bodies' centres cannot come as close as small ones'
+        // (a geometric bias, not segregation).
+        const double interior = radius_ - 2 * clearance_;
+        std::vector<double> depth;
+        std::vector<char> small_interior;
+        for (std::size_t i = 0; i < n; ++i)
+            if (r[i] < interior) {
+                depth.push_back(std::hypot(b.position[i].x - cx, b.position[i].y - cy));
+                small_interior.push_back(small[i]);
+            }
         const MixtureBins axial = mixture_bins(z, big, 0, length_, int(c_.integer("axial_slices")), sim.comm());
         const MixtureBins radial = mixture_bins(r, big, 0, radius_, int(c_.integer("radial_shells")), sim.comm());
-        const SplitSegregation core = split_segregation(r_interior, small_interior, sim.comm());
+        std::vector<char> big_interior(small_interior.size());
+        for (std::size_t i = 0; i < big_interior.size(); ++i) big_interior[i] = !small_interior[i];
+        const MixtureBins about_centre = mixture_bins(depth, big_interior, 0, radius_,
+                                                      int(c_.integer("radial_shells")), sim.comm());
+        const SplitSegregation core = split_segregation(depth, small_interior, sim.comm());
         const BandCensus bands = band_census(axial);
         // The bed's cross-section is a circular segment (flat free surface): its centroid lies
         // on the normal to the surface through the axis, so the centroid's direction gives the
         // surface's tilt (the dynamic angle of repose) and its distance the filled fraction.
-        const double cx = total[2] > 0 ? total[0] / total[2] : 0, cy = total[2] > 0 ? total[1] / total[2] : 0;
         const double sense = omega_ < 0 ? -1.0 : 1.0;
         const double repose = std::atan2(sense * cx, -cy) * 360 / kTwoPi;
         const double reach = radius_ - 0.5 * kRange * (d_ + wall_.sphere_diameter);  // centres' circle
@@ -195,8 +206,10 @@ public:
                 {"bodies_axial", axial.count},
                 {"big_fraction_radial", radial.fraction()},
                 {"bodies_radial", radial.count},
+                {"big_fraction_about_bed_centre", about_centre.fraction()},
+                {"bed_centre", {cx, cy}},
                 {"radial_segregation", {core.index, core.random_sd, core.index / core.random_sd}},
-                {"small_fraction_inner_outer", {core.inner_fraction, core.outer_fraction, core.split}},
+                {"core_small_fraction", {core.inner_fraction, core.outer_fraction, core.split}},
                 {"axial_bands", {double(bands.bands), bands.contrast}},
                 {"repose_angle", {repose}},
                 {"fill_fraction", {(alpha - std::sin(alpha)) / kTwoPi}}};

@@ -16,7 +16,10 @@ trap 'rm -rf "$dir"' EXIT
 "$exe" run rayleigh-benard --preset tiny --set steps=1000 --set fields.interval=250 \
   --set fields.grid=4x4x5 --set progress_interval=0 -o "$dir/rb" >/dev/null
 "$scripts/plot_rayleigh_benard" "$dir/rb" "$dir/rb/fig" >/dev/null
-for png in "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
+"$exe" run rotating-drum --preset tiny --set progress_interval=0 -o "$dir/rd" >/dev/null
+"$scripts/plot_rotating_drum" "$dir/rd" "$dir/rd/fig" >/dev/null
+for png in "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
+           "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
            "$dir/rb/fig-flow.png"; do
   # A PNG signature and more than a blank canvas's worth of bytes.
