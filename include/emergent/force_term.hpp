@@ -101,4 +101,16 @@ std::unique_ptr<ForceTerm> make_rough_cylinder_wall(const RoughCylinder& wall,
 /// The wall spheres' centres at time t (for pictures and tests), ring by ring.
 std::vector<Vec3> rough_cylinder_spheres(const RoughCylinder& wall, double time);
 
+/// A flat end cap of the drum made rough: spheres of diameter `sphere_diameter` embedded with
+/// their centres in the plane z = `z`, on a triangular grid of spacing `spacing` fixed in the
+/// cap, within `radius` of the axis, turning at `omega` about +z. Particles touch them with
+/// the contact law `contact`. (The flat cap itself is a make_plane_wall.)
+struct RoughEndCap {
+    double z = 0, radius = 10, omega = 0, spacing = 2.2, sphere_diameter = 1.0;
+};
+std::unique_ptr<ForceTerm> make_rough_end_cap(const RoughEndCap& cap, const GranularPair& contact,
+                                              double range_factor = 1.0);
+/// The cap's spheres' centres at time t (for pictures and tests).
+std::vector<Vec3> rough_end_cap_spheres(const RoughEndCap& cap, double time);
+
 }  // namespace emergent

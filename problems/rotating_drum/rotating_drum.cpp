@@ -114,10 +114,21 @@ public:
         wall_.spacing = c_.real("wall_spacing");
         wall_.sphere_diameter = c_.real("wall_sphere_diameter");
         sim.add_force(make_rough_cylinder_wall(wall_, contact(gn, gs_wall), kRange));
-        // End caps: overlap repulsion and normal damping only (smooth).
+        // End caps: overlap repulsion and normal damping only (smooth); optionally made rough
+        // by spheres embedded in them, turning with the drum and touching like the curved wall.
         const GranularPair cap = contact(c_.real("cap_gamma_n"), 0);
         sim.add_force(make_plane_wall(2, 0.0, +1, cap, kRange));
         sim.add_force(make_plane_wall(2, length_, -1, cap, kRange));
+        if (c_.text("end_caps") == "rough")
+            for (const double z : {0.0, length_}) {
+                RoughEndCap rough;
+                rough.z = z;
+                rough.radius = radius_ - 0.5 * wall_.spacing;
+                rough.omega = omega_;
+                rough.spacing = wall_.spacing;
+                rough.sphere_diameter = wall_.sphere_diameter;
+                sim.add_force(make_rough_end_cap(rough, contact(gn, gs_wall), kRange));
+            }
 
         const std::vector<double> d4(4, d_);
         small_ = sim.add_body_kind(tetrahedron(c_.real("arm_small")), std::vector<int>(4, kSmall), d4);
@@ -192,7 +203,13 @@ public:
         const MixtureBins about_centre = mixture_bins(depth, big_interior, 0, radius_,
                                                       int(c_.integer("radial_shells")), sim.comm());
         const SplitSegregation core = split_segregation(depth, small_interior, sim.comm());
-        const BandCensus bands = band_census(axial);
+        // Bands are counted away from the caps, where big centres cannot come as close as
+        // small ones (the end slices are small-rich by geometry alone).
+        const double end = length_ > 4 * clearance_ + 1 ? 2 * clearance_ : 0.0;
+        const int interior_slices = std::max(
+            1, int(std::lround(c_.integer("axial_slices") * (length_ - 2 * end) / length_)));
+        const BandCensus bands =
+            band_census(mixture_bins(z, big, end, length_ - end, interior_slices, sim.comm()));
         // The bed's cross-section is a circular segment (flat free surface): its centroid lies
         // on the normal to the surface through the axis, so the centroid's direction gives the
         // surface's tilt (the dynamic angle of repose) and its distance the filled fraction.
@@ -258,6 +275,9 @@ ProblemInfo rotating_drum_info() {
         .real("gamma_s_wall", 10, 0, 1e9, "m/tau", "sliding friction with the curved wall")
         .real("mu_max", 0.5, 0, 10, "1", "Coulomb cap at the largest gamma_s (mu proportional to gamma_s)")
         .real("cap_gamma_n", 5, 0, 1e9, "m/tau", "normal damping of the smooth end caps")
+        .choice("end_caps", "smooth", {"smooth", "rough"},
+                "smooth (paper): normal damping only; rough: also spheres embedded on the curved "
+                "wall's grid, turning with the drum")
         .real("wall_spacing", 2.2, 0, 100, "sigma", "spacing of the spheres embedded in the curved wall", true)
         .real("wall_sphere_diameter", 1, 0, 100, "sigma", "diameter of the wall spheres", true)
         .real("initial_speed", 0.1, 0, 100, "sigma/tau", "spread of the initial random velocities")

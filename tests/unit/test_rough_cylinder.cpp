@@ -8,6 +8,7 @@
 #include <random>
 
 #include "force/rough_cylinder.hpp"
+#include "force/rough_end_cap.hpp"
 
 using namespace emergent;
 
@@ -127,4 +128,43 @@ TEST(RoughCylinderForce, TurnsWithTheWallAndDoesNotDampSpheresMovingWithIt) {
     const Vec3 fe = force::rough_cylinder_force<false, true>(l, kWall, kRange, 1.0, x0, v0, 1.0, 0, nullptr);
     const Vec3 d = fc - fe;
     EXPECT_LT(std::sqrt(dot(d, d)), 1e-9 * std::sqrt(dot(fe, fe)));
+}
+
+TEST(RoughEndCap, SpheresTurnRigidlyAndEveryTouchingOneIsFound) {
+    RoughEndCap c;
+    c.z = 12, c.radius = 8.4, c.omega = -0.2, c.spacing = 2.2, c.sphere_diameter = 1;
+    const auto at0 = rough_end_cap_spheres(c, 0.0);
+    // A triangular grid of spacing a has 2 / (sqrt(3) a^2) sites per area: ~ 69 in r < 8.4.
+    EXPECT_NEAR(double(at0.size()), 3.14159 * 8.4 * 8.4 * 2 / (std::sqrt(3.0) * 2.2 * 2.2), 8);
+    const auto later = rough_end_cap_spheres(c, 9.0);
+    ASSERT_EQ(later.size(), at0.size());
+    for (std::size_t k = 0; k < at0.size(); ++k) {
+        const Vec3 d = later[k] - turn(at0[k], c.omega * 9.0);
+        ASSERT_LT(std::sqrt(dot(d, d)), 1e-12);
+    }
+    force::RoughCapLattice l;
+    l.z_cap = c.z, l.radius = c.radius, l.spacing = c.spacing;
+    l.row_spacing = 0.5 * std::sqrt(3.0) * c.spacing, l.omega = c.omega;
+    std::mt19937_64 rng(13);
+    std::uniform_real_distribution<double> u(0, 1);
+    int touching = 0;
+    for (int trial = 0; trial < 3000; ++trial) {
+        const double t = 40 * u(rng), r = 9 * std::sqrt(u(rng)), phi = 6.283185307179586 * u(rng);
+        const Vec3 x{r * std::cos(phi), r * std::sin(phi), c.z - 1.2 * u(rng)};
+        const Vec3 v{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
+        const double d = 0.8 + 0.4 * u(rng), rc = 0.5 * kRange * (d + c.sphere_diameter);
+        const Vec3 f = force::rough_cap_force<true, true>(l, kWall, kRange, c.sphere_diameter, x, v, d, t, nullptr);
+        Vec3 ref{0, 0, 0};
+        for (const Vec3& s : rough_end_cap_spheres(c, t)) {
+            const Vec3 sep = x - s;
+            const double dist = std::sqrt(dot(sep, sep));
+            if (dist >= rc) continue;
+            ++touching;
+            ref += force::contact_force<true, true>((1 / dist) * sep, rc - dist,
+                                                    v - Vec3{-c.omega * s.y, c.omega * s.x, 0}, kWall);
+        }
+        const Vec3 diff = f - ref;
+        ASSERT_LT(std::sqrt(dot(diff, diff)), 1e-9 * (1 + std::sqrt(dot(ref, ref)))) << "trial " << trial;
+    }
+    EXPECT_GT(touching, 500);
 }
