@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# Work-precision of rotating-drum: wall time per revolution against the time step's effect on
+# what the scene measures. A drum of D = 24, L = 16 with ~260 tetrahedra (the repose test's
+# drum) turns 10 revolutions at each dt; the dynamic angle of repose (mean over revolutions
+# 2-10, error from 4 blocks) and the filled fraction are compared with the smallest dt. A dt at
+# which the run stops (guards) is reported as such. REPEATS timed runs per dt (median).
+# usage: benchmarks/drum_work_precision.sh [REPEATS] [DTS]   (defaults 1, "0.00125 0.0025 0.005 0.0075 0.01 0.015")
+set -euo pipefail
+cd "$(dirname "$0")/.."
+repeats=${1:-1}
+dts=${2:-"0.00125 0.0025 0.005 0.0075 0.01 0.015"}
+. benchmarks/common.sh
+drum=(--set diameter=24 --set length=16 --set bodies=260 --set progress_interval=0)
+printf '| dt | steps/rev | wall s/rev (1 rank) | repose angle (deg) | fill | outcome |\n|---|---|---|---|---|---|\n'
+for dt in $dts; do
+  steps=$(awk -v dt="$dt" 'BEGIN { printf "%d", 10 * 6.283185307179586 / (0.2 * dt) + 0.5 }')
+  every=$(awk -v s="$steps" 'BEGIN { printf "%d", s / 100 }')
+  : >"$work/w$dt"
+  outcome=ok
+  for r in $(seq "$repeats"); do
+    if ! "$exe" run rotating-drum "${drum[@]}" --set dt="$dt" --set steps="$steps" \
+        --set sample_every="$every" -o "$work/d$dt" >"$work/log" 2>&1; then
+      outcome="stopped: $(grep -o 'error: .*' "$work/log" | head -1 | cut -c8-90)"
+      break
+    fi
+    grep -o '"wall_seconds": [0-9.e+]*' "$work/d$dt/summary.json" | awk '{print $2 / 10}' >>"$work/w$dt"
+  done
+  if [ "$outcome" != ok ]; then printf '| %s | %d | - | - | - | %s |\n' "$dt" "$((steps / 10))" "$outcome"; continue; fi
+  /usr/bin/python3 - "$work/d$dt" "$dt" "$((steps / 10))" "$(median <"$work/w$dt")" <<'PY'
+import sys
+sys.path.insert(0, "scripts")
+import numpy as np
+from emergentpy import Run
+run = Run(sys.argv[1])
+_, rev = run.observable("revolutions")
+_, angle = run.observable("repose_angle")
+_, fill = run.observable("fill_fraction")
+rev, angle, fill = rev.reshape(-1), angle.reshape(-1), fill.reshape(-1)
+keep = rev >= 2
+blocks = np.array([b.mean() for b in np.array_split(angle[keep], 4)])
+err = blocks.std(ddof=1) / np.sqrt(len(blocks))
+print(f"| {sys.argv[2]} | {sys.argv[3]} | {float(sys.argv[4]):.2f} | {angle[keep].mean():.2f} +- {err:.2f} "
+      f"| {fill[keep].mean():.4f} | ok |")
+PY
+done
