@@ -2,16 +2,18 @@
 # Work-precision of rotating-drum: wall time per revolution against the time step's effect on
 # what the scene measures. A drum of D = 24, L = 16 with ~260 tetrahedra (the repose test's
 # drum) turns 10 revolutions at each dt; the dynamic angle of repose (mean over revolutions
-# 2-10, error from 4 blocks) and the filled fraction are compared with the smallest dt. A dt at
+# 2-10, error from 4 blocks), the filled fraction and the largest contact overlap (as a fraction
+# of the contact range, sampled 10 times per revolution) are compared with the smallest dt. A dt at
 # which the run stops (guards) is reported as such. REPEATS timed runs per dt (median).
-# usage: benchmarks/drum_work_precision.sh [REPEATS] [DTS]   (defaults 1, "0.00125 0.0025 0.005 0.0075 0.01 0.015")
+# usage: benchmarks/drum_work_precision.sh [REPEATS] [DTS]
+#        (defaults 3, "0.00125 0.0025 0.005 0.0075 0.01 0.015 0.02 0.03 0.04")
 set -euo pipefail
 cd "$(dirname "$0")/.."
-repeats=${1:-1}
-dts=${2:-"0.00125 0.0025 0.005 0.0075 0.01 0.015"}
+repeats=${1:-3}
+dts=${2:-"0.00125 0.0025 0.005 0.0075 0.01 0.015 0.02 0.03 0.04"}
 . benchmarks/common.sh
 drum=(--set diameter=24 --set length=16 --set bodies=260 --set progress_interval=0)
-printf '| dt | steps/rev | wall s/rev (1 rank) | repose angle (deg) | fill | outcome |\n|---|---|---|---|---|---|\n'
+printf '| dt | steps/rev | wall s/rev (1 rank) | repose angle (deg) | fill | overlap / r_c: mean of sample max, largest | outcome |\n|---|---|---|---|---|---|---|\n'
 for dt in $dts; do
   steps=$(awk -v dt="$dt" 'BEGIN { printf "%d", 10 * 6.283185307179586 / (0.2 * dt) + 0.5 }')
   every=$(awk -v s="$steps" 'BEGIN { printf "%d", s / 100 }')
@@ -25,7 +27,7 @@ for dt in $dts; do
     fi
     grep -o '"wall_seconds": [0-9.e+]*' "$work/d$dt/summary.json" | awk '{print $2 / 10}' >>"$work/w$dt"
   done
-  if [ "$outcome" != ok ]; then printf '| %s | %d | - | - | - | %s |\n' "$dt" "$((steps / 10))" "$outcome"; continue; fi
+  if [ "$outcome" != ok ]; then printf '| %s | %d | - | - | - | - | %s |\n' "$dt" "$((steps / 10))" "$outcome"; continue; fi
   /usr/bin/python3 - "$work/d$dt" "$dt" "$((steps / 10))" "$(median <"$work/w$dt")" <<'PY'
 import sys
 sys.path.insert(0, "scripts")
@@ -35,11 +37,12 @@ run = Run(sys.argv[1])
 _, rev = run.observable("revolutions")
 _, angle = run.observable("repose_angle")
 _, fill = run.observable("fill_fraction")
-rev, angle, fill = rev.reshape(-1), angle.reshape(-1), fill.reshape(-1)
+_, overlap = run.observable("max_overlap")
+rev, angle, fill, overlap = rev.reshape(-1), angle.reshape(-1), fill.reshape(-1), overlap.reshape(-1)
 keep = rev >= 2
 blocks = np.array([b.mean() for b in np.array_split(angle[keep], 4)])
 err = blocks.std(ddof=1) / np.sqrt(len(blocks))
 print(f"| {sys.argv[2]} | {sys.argv[3]} | {float(sys.argv[4]):.2f} | {angle[keep].mean():.2f} +- {err:.2f} "
-      f"| {fill[keep].mean():.4f} | ok |")
+      f"| {fill[keep].mean():.4f} | {overlap[keep].mean():.3f}, {overlap[keep].max():.3f} | ok |")
 PY
 done

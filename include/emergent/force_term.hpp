@@ -25,6 +25,9 @@ struct ForceContext {
 struct ForceSums {
     double potential = 0;  ///< sum of potential energy over owned particles' share
     double virial = 0;     ///< W = sum over pairs of r_ij . f_ij (trace of the virial tensor)
+    /// Largest overlap of any granular contact, as a fraction of its contact range r_c
+    /// (sphere pairs and walls); stays -1 when no term has contacts.
+    double max_overlap = -1;
 };
 
 /// One term of the force field. The engine sums all terms every step; energy and virial are

@@ -48,6 +48,8 @@ struct ThermoSample {
     double temperature = 0, pressure = 0;
     Vec3 momentum{0, 0, 0};
     Vec3 angular_momentum{0, 0, 0};  ///< about the origin, from unwrapped positions
+    /// Largest granular overlap / contact range at the last sampling step; -1 without contacts.
+    double max_overlap = -1;
 };
 
 /// Wall-clock seconds spent in each part of the step (this rank).

@@ -125,11 +125,16 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
             const long long s = sim.step_index() + 1;
             const bool checkpoint = checkpoint_every > 0 && s % checkpoint_every == 0;
             sim.step(sample_due(s));
+            // Sampled bounds (energy drift, overlaps) are checked before this step's state may
+            // become the last good one.
+            ThermoSample t;
+            if (sample_due(s)) {
+                t = sim.measure();
+                guard.on_sample(sim, t);
+            }
             guard.after_step(sim, checkpoint);  // a checkpoint is only written from a good state
             output.on_step(sim);
             if (sample_due(s)) {
-                const ThermoSample t = sim.measure();
-                guard.on_sample(sim, t);
                 last_measures = problem.measures(sim);
                 output.on_sample(t, last_measures);
                 if (s >= n_eq) series.push_back(t);

@@ -13,6 +13,7 @@ RunGuard::RunGuard(const Config& config, const Simulation& sim) {
     limits_.max_force = config.real("guard.max_force");
     every_ = config.integer("guard.every");
     max_drift_ = sim.conserves_energy() ? config.real("guard.max_energy_drift") : 0.0;
+    max_overlap_ = config.real("guard.max_overlap");
     // A bad start has no good state to fall back to: report it as it is.
     sim.check_guards(limits_);
     // Keeping the last good state costs one copy of the owned particles (~130 B each);
@@ -31,6 +32,13 @@ void RunGuard::after_step(const Simulation& sim, bool now) {
 }
 
 void RunGuard::on_sample(const Simulation& sim, const ThermoSample& t) {
+    if (max_overlap_ > 0 && t.max_overlap > max_overlap_) {
+        std::ostringstream msg;
+        msg << "granular contacts overlap by " << t.max_overlap << " of their range at step "
+            << sim.step_index() << ", beyond guard.max_overlap=" << max_overlap_
+            << " (time step too large for k_n, or particles driven into each other?)";
+        throw InstabilityError(msg.str());
+    }
     if (max_drift_ <= 0) return;
     if (!have_reference_) {
         reference_energy_ = t.total;

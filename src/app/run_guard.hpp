@@ -28,7 +28,7 @@ public:
 private:
     GuardLimits limits_;
     long long every_ = 0;
-    double max_drift_ = 0, reference_energy_ = 0;
+    double max_drift_ = 0, reference_energy_ = 0, max_overlap_ = 0;
     bool have_reference_ = false, have_good_ = false;
     StateSnapshot last_good_;
 };

@@ -478,6 +478,7 @@ ThermoSample Simulation::measure() const {
     t.pressure = (2 * v[0] + v[2]) / (3 * e.box.volume());
     t.momentum = {v[3], v[4], v[5]};
     t.angular_momentum = {v[6], v[7], v[8]};
+    MPI_Allreduce(&e.sums.max_overlap, &t.max_overlap, 1, MPI_DOUBLE, MPI_MAX, e.comm);
     return t;
 }
 

@@ -29,6 +29,16 @@ EMERGENT_HD inline Vec3 contact_force(const Vec3& n, Real overlap, const Vec3& v
     return f;
 }
 
+/// What sampling steps add up over contacts: elastic energy and the largest overlap as a
+/// fraction of the contact range.
+struct ContactTally {
+    Real energy = 0, max_overlap = 0;
+    EMERGENT_HD void add(Real k_n, Real overlap, Real range) {
+        energy += 0.5 * k_n * overlap * overlap;
+        if (overlap > max_overlap * range) max_overlap = overlap / range;
+    }
+};
+
 /// Compile-time features of the contact loop.
 template <bool Sample, bool Damping, bool Friction, bool SpeciesTable>
 struct ContactFeatures {

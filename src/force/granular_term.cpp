@@ -26,7 +26,7 @@ void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSet
     const GranularPair* table = g.pairs.data();
     const int n_species = g.n_species;
     const Real half_range = 0.5 * g.range_factor;
-    double potential = 0, virial = 0;
+    double potential = 0, virial = 0, worst = 0;
     for (std::size_t i = 0; i < n_owned; ++i) {
         const Vec3 xi = x[i], vi = v[i];
         const Real di = d[i];
@@ -44,6 +44,7 @@ void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSet
             fi += fij;
             f[j] -= fij;
             if constexpr (F::sample) {
+                worst = std::max(worst, (rc - dist) / rc);
                 const Real w = j < n_owned ? 1.0 : 0.5;
                 potential += w * 0.5 * p.k_n * (rc - dist) * (rc - dist);
                 virial += w * dot(r, fij);
@@ -53,6 +54,7 @@ void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSet
     }
     sums.potential += potential;
     sums.virial += virial;
+    if constexpr (F::sample) sums.max_overlap = std::max(sums.max_overlap, worst);
 }
 
 /// Runs the contact loop instantiated for the features chosen by dispatch_bools.
@@ -87,8 +89,12 @@ struct WallLoop {
             const Real rc = 0.5 * range * s.diameter[i];
             if (h >= rc) continue;
             s.force[i] += force::contact_force<Damping, Friction>(n, rc - h, s.velocity[i] - velocity, p);
-            if (sample) sums.potential += 0.5 * p.k_n * (rc - h) * (rc - h);
+            if (sample) {
+                sums.potential += 0.5 * p.k_n * (rc - h) * (rc - h);
+                sums.max_overlap = std::max(sums.max_overlap, (rc - h) / rc);
+            }
         }
+        if (sample) sums.max_overlap = std::max(sums.max_overlap, 0.0);
     }
 };
 

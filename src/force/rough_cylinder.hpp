@@ -4,6 +4,7 @@
 // drum feels from them and from the smooth surface behind them. Written once for CPU and GPU.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "emergent/force_term.hpp"
@@ -34,14 +35,35 @@ struct RoughCylinderLattice {
     EMERGENT_HD Vec3 wall_velocity(const Vec3& x) const { return {-omega * x.y, omega * x.x, 0}; }
 };
 
+/// The grid of a RoughCylinder (see make_rough_cylinder_wall).
+inline RoughCylinderLattice rough_cylinder_lattice(const RoughCylinder& w) {
+    constexpr double kTwoPi = 6.283185307179586;
+    RoughCylinderLattice l;
+    l.radius = w.radius;
+    l.omega = w.omega;
+    l.n_around = static_cast<int>(std::lround(kTwoPi * w.radius / w.spacing));
+    l.angle_step = kTwoPi / l.n_around;
+    // Rings of a triangular grid are sqrt(3)/2 of the spacing apart, stretched slightly so a
+    // whole number of them spans the length. The end rings keep one row spacing from the ends:
+    // a ring closer to an end cap leaves less than a sphere's room in the corner, and the
+    // turning wall spheres would wedge the spheres sitting there against the cap.
+    const double ideal = 0.5 * std::sqrt(3.0) * w.spacing;
+    const double span = std::max(0.0, w.z_hi - w.z_lo - 2 * ideal);
+    const int gaps = static_cast<int>(std::lround(span / ideal));
+    l.n_rows = gaps + 1;
+    l.row_spacing = gaps > 0 ? span / gaps : ideal;
+    l.z_first = gaps > 0 ? w.z_lo + ideal : 0.5 * (w.z_lo + w.z_hi);
+    return l;
+}
+
 /// Contact force on one sphere (centre x, velocity v, diameter d) from the rough wall at time t:
 /// every wall sphere within r_c = range (d + d_wall) / 2, plus the smooth cylinder surface
 /// through the wall spheres' centres (r_c = range d / 2), which keeps spheres from slipping
-/// through the gaps of the grid. Adds the elastic energy to *energy when it is not null.
+/// through the gaps of the grid. Adds energy and overlap to *tally when it is not null.
 template <bool Damping, bool Friction>
 EMERGENT_HD inline Vec3 rough_cylinder_force(const RoughCylinderLattice& w, const GranularPair& p,
                                              Real range, Real d_wall, const Vec3& x, const Vec3& v,
-                                             Real d, Real t, Real* energy) {
+                                             Real d, Real t, ContactTally* tally) {
     Vec3 f{0, 0, 0};
     const Real r = std::sqrt(x.x * x.x + x.y * x.y);
     const Real reach = 0.5 * range * (d + d_wall);
@@ -53,7 +75,7 @@ EMERGENT_HD inline Vec3 rough_cylinder_force(const RoughCylinderLattice& w, cons
         const Vec3 at = (w.radius / r) * Vec3{x.x, x.y, 0};
         const Real overlap = rc_surface - gap;
         f += contact_force<Damping, Friction>(n, overlap, v - w.wall_velocity(at), p);
-        if (energy) *energy += 0.5 * p.k_n * overlap * overlap;
+        if (tally) tally->add(p.k_n, overlap, rc_surface);
     }
     // Rings within reach along z, and within them the spheres within reach around.
     const Real zk = (x.z - w.z_first) / w.row_spacing, dk = reach / w.row_spacing;
@@ -74,7 +96,7 @@ EMERGENT_HD inline Vec3 rough_cylinder_force(const RoughCylinderLattice& w, cons
             const Real dist = std::sqrt(s2);
             f += contact_force<Damping, Friction>((1 / dist) * s, reach - dist,
                                                   v - w.wall_velocity(xw), p);
-            if (energy) *energy += 0.5 * p.k_n * (reach - dist) * (reach - dist);
+            if (tally) tally->add(p.k_n, reach - dist, reach);
         }
     }
     return f;

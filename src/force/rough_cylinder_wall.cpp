@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The rough rotating cylinder wall as a force term.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -12,23 +13,6 @@ namespace emergent {
 
 namespace {
 
-constexpr double kTwoPi = 6.283185307179586;
-
-force::RoughCylinderLattice lattice_of(const RoughCylinder& w) {
-    force::RoughCylinderLattice l;
-    l.radius = w.radius;
-    l.omega = w.omega;
-    l.n_around = static_cast<int>(std::lround(kTwoPi * w.radius / w.spacing));
-    l.angle_step = kTwoPi / l.n_around;
-    // Rings of a triangular grid are sqrt(3)/2 of the spacing apart; stretched slightly so a
-    // whole number of them spans the length, each half a row from the ends.
-    const double length = w.z_hi - w.z_lo, ideal = 0.5 * std::sqrt(3.0) * w.spacing;
-    l.n_rows = std::max(1, static_cast<int>(std::lround(length / ideal)));
-    l.row_spacing = length / l.n_rows;
-    l.z_first = w.z_lo + 0.5 * l.row_spacing;
-    return l;
-}
-
 struct RoughCylinderLoop {
     ParticleStore& s;
     std::size_t n_owned;
@@ -39,19 +23,21 @@ struct RoughCylinderLoop {
     ForceSums& sums;
     template <bool Damping, bool Friction>
     void operator()() const {
-        Real energy = 0;
+        force::ContactTally tally;
         for (std::size_t i = 0; i < n_owned; ++i)
             s.force[i] += force::rough_cylinder_force<Damping, Friction>(
                 lattice, p, range, d_wall, s.position[i], s.velocity[i], s.diameter[i], time,
-                sample ? &energy : nullptr);
-        sums.potential += energy;
+                sample ? &tally : nullptr);
+        if (!sample) return;
+        sums.potential += tally.energy;
+        sums.max_overlap = std::max(sums.max_overlap, tally.max_overlap);
     }
 };
 
 class RoughCylinderWall final : public ForceTerm {
 public:
     RoughCylinderWall(const RoughCylinder& w, const GranularPair& p, double range)
-        : wall_(w), lattice_(lattice_of(w)), p_(p), range_(range) {}
+        : wall_(w), lattice_(force::rough_cylinder_lattice(w)), p_(p), range_(range) {}
     std::string name() const override { return "rough-cylinder-wall"; }
     bool conservative() const override {
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && wall_.omega == 0;
@@ -95,7 +81,7 @@ std::unique_ptr<ForceTerm> make_rough_cylinder_wall(const RoughCylinder& w,
 }
 
 std::vector<Vec3> rough_cylinder_spheres(const RoughCylinder& w, double time) {
-    const force::RoughCylinderLattice l = lattice_of(w);
+    const force::RoughCylinderLattice l = force::rough_cylinder_lattice(w);
     std::vector<Vec3> out;
     out.reserve(static_cast<std::size_t>(l.n_rows) * l.n_around);
     for (int k = 0; k < l.n_rows; ++k)

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The rough rotating end cap as a force term.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -12,16 +13,6 @@ namespace emergent {
 
 namespace {
 
-force::RoughCapLattice lattice_of(const RoughEndCap& c) {
-    force::RoughCapLattice l;
-    l.z_cap = c.z;
-    l.radius = c.radius;
-    l.spacing = c.spacing;
-    l.row_spacing = 0.5 * std::sqrt(3.0) * c.spacing;
-    l.omega = c.omega;
-    return l;
-}
-
 struct RoughCapLoop {
     ParticleStore& s;
     std::size_t n_owned;
@@ -32,19 +23,21 @@ struct RoughCapLoop {
     ForceSums& sums;
     template <bool Damping, bool Friction>
     void operator()() const {
-        Real energy = 0;
+        force::ContactTally tally;
         for (std::size_t i = 0; i < n_owned; ++i)
             s.force[i] += force::rough_cap_force<Damping, Friction>(
                 lattice, p, range, d_cap, s.position[i], s.velocity[i], s.diameter[i], time,
-                sample ? &energy : nullptr);
-        sums.potential += energy;
+                sample ? &tally : nullptr);
+        if (!sample) return;
+        sums.potential += tally.energy;
+        sums.max_overlap = std::max(sums.max_overlap, tally.max_overlap);
     }
 };
 
 class RoughEndCapTerm final : public ForceTerm {
 public:
     RoughEndCapTerm(const RoughEndCap& c, const GranularPair& p, double range)
-        : cap_(c), lattice_(lattice_of(c)), p_(p), range_(range) {}
+        : cap_(c), lattice_(force::rough_cap_lattice(c)), p_(p), range_(range) {}
     std::string name() const override { return "rough-end-cap"; }
     bool conservative() const override {
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && cap_.omega == 0;
@@ -83,7 +76,7 @@ std::unique_ptr<ForceTerm> make_rough_end_cap(const RoughEndCap& c, const Granul
 }
 
 std::vector<Vec3> rough_end_cap_spheres(const RoughEndCap& c, double time) {
-    const force::RoughCapLattice l = lattice_of(c);
+    const force::RoughCapLattice l = force::rough_cap_lattice(c);
     std::vector<Vec3> out;
     const int nj = static_cast<int>(std::ceil(c.radius / l.row_spacing)) + 1;
     const int ni = static_cast<int>(std::ceil(c.radius / l.spacing)) + 1;

@@ -33,12 +33,23 @@ struct RoughCapLattice {
     EMERGENT_HD Vec3 wall_velocity(const Vec3& x) const { return {-omega * x.y, omega * x.x, 0}; }
 };
 
+/// The grid of a RoughEndCap (see make_rough_end_cap).
+inline RoughCapLattice rough_cap_lattice(const RoughEndCap& c) {
+    RoughCapLattice l;
+    l.z_cap = c.z;
+    l.radius = c.radius;
+    l.spacing = c.spacing;
+    l.row_spacing = 0.5 * std::sqrt(3.0) * c.spacing;
+    l.omega = c.omega;
+    return l;
+}
+
 /// Contact force on one sphere (centre x, velocity v, diameter d) from the cap's spheres at
-/// time t, r_c = range (d + d_cap) / 2. Adds the elastic energy to *energy when not null.
+/// time t, r_c = range (d + d_cap) / 2. Adds energy and overlap to *tally when not null.
 template <bool Damping, bool Friction>
 EMERGENT_HD inline Vec3 rough_cap_force(const RoughCapLattice& cap, const GranularPair& p,
                                         Real range, Real d_cap, const Vec3& x, const Vec3& v,
-                                        Real d, Real t, Real* energy) {
+                                        Real d, Real t, ContactTally* tally) {
     Vec3 f{0, 0, 0};
     const Real reach = 0.5 * range * (d + d_cap);
     if (!(std::fabs(x.z - cap.z_cap) < reach)) return f;
@@ -60,7 +71,7 @@ EMERGENT_HD inline Vec3 rough_cap_force(const RoughCapLattice& cap, const Granul
             const Real dist = std::sqrt(s2);
             f += contact_force<Damping, Friction>((1 / dist) * sep, reach - dist,
                                                   v - cap.wall_velocity(xw), p);
-            if (energy) *energy += 0.5 * p.k_n * (reach - dist) * (reach - dist);
+            if (tally) tally->add(p.k_n, reach - dist, reach);
         }
     }
     return f;

@@ -74,6 +74,7 @@ void RunOutput::on_sample(const ThermoSample& t, const Measures& scene_measures)
     trajectory_->write_observable("pressure", t.step, t.time, {t.pressure});
     trajectory_->write_observable("momentum", t.step, t.time,
                                   {t.momentum.x, t.momentum.y, t.momentum.z});
+    if (t.max_overlap >= 0) trajectory_->write_observable("max_overlap", t.step, t.time, {t.max_overlap});
 }
 
 void RunOutput::on_step(Simulation& sim) {

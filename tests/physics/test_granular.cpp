@@ -146,3 +146,38 @@ TEST(GranularContact, SettledBedRestsOnTheFloor) {
     std::printf("floor carries %.2f, weight %.2f, kinetic per particle %.2e\n", floor_force,
                 216 * g, kinetic / 216);
 }
+
+TEST(GranularContact, LargestOverlapIsReportedForPairsAndWalls) {
+    // Undamped contacts: the overlap peaks at amplitude v / omega = v sqrt(m_eff / k).
+    // Pair: two unit spheres at relative speed 1, m_eff = 1/2, r_c = 1. Wall: one unit sphere
+    // at speed 1 onto a wall, m_eff = 1, r_c = 1/2. Sampled every step with dt = t_c / 400, the
+    // sampled peak is within (omega dt)^2 / 8 ~ 1e-5 relative of the true one.
+    const double k = 1000;
+    auto largest = [&](bool wall) {
+        RunSettings rs;
+        rs.dt = M_PI / std::sqrt(k / 0.5) / 400;
+        rs.skin = 0.2;
+        Simulation sim(MPI_COMM_SELF, rs);
+        sim.set_box(open_box(10, true));
+        sim.set_species_masses({1.0});
+        GranularSettings g;
+        g.pairs = {GranularPair{k, 0, 0, 0}};
+        sim.add_force(make_granular_contacts(g));
+        if (wall) {
+            sim.add_force(make_plane_wall(0, 1.0, +1, GranularPair{k, 0, 0, 0}));
+            sim.add_particle({1.6, 5, 5}, {-1, 0, 0}, 0, 0);
+        } else {
+            sim.add_particle({4.45, 5, 5}, {0.5, 0, 0}, 0, 0);
+            sim.add_particle({5.55, 5, 5}, {-0.5, 0, 0}, 0, 1);
+        }
+        sim.initialise();
+        double peak = -1;
+        for (int s = 0; s < 1200; ++s) {
+            sim.step(true);
+            peak = std::max(peak, sim.measure().max_overlap);
+        }
+        return peak;
+    };
+    EXPECT_NEAR(largest(false), std::sqrt(0.5 / k) / 1.0, 1e-4 * std::sqrt(0.5 / k));
+    EXPECT_NEAR(largest(true), std::sqrt(1.0 / k) / 0.5, 1e-4 * std::sqrt(1.0 / k) / 0.5);
+}

@@ -27,18 +27,6 @@ Vec3 turn(const Vec3& x, double a) {
     return {std::cos(a) * x.x - std::sin(a) * x.y, std::sin(a) * x.x + std::cos(a) * x.y, x.z};
 }
 
-/// The lattice as the force term builds it, read back from the sphere list at t = 0.
-force::RoughCylinderLattice lattice(const RoughCylinder& w) {
-    force::RoughCylinderLattice l;
-    l.radius = w.radius, l.omega = w.omega;
-    l.n_around = static_cast<int>(std::lround(6.283185307179586 * w.radius / w.spacing));
-    l.angle_step = 6.283185307179586 / l.n_around;
-    l.n_rows = static_cast<int>(rough_cylinder_spheres(w, 0).size()) / l.n_around;
-    l.row_spacing = (w.z_hi - w.z_lo) / l.n_rows;
-    l.z_first = w.z_lo + 0.5 * l.row_spacing;
-    return l;
-}
-
 }  // namespace
 
 TEST(RoughCylinder, WallSpheresTurnRigidlyWithTheWallOnAStaggeredGrid) {
@@ -69,7 +57,7 @@ TEST(RoughCylinder, WallSpheresTurnRigidlyWithTheWallOnAStaggeredGrid) {
 TEST(RoughCylinder, FindsEveryTouchingWallSphereAtAnyTime) {
     // Reference: the contact law summed over all wall spheres, plus the smooth surface.
     const RoughCylinder w = drum();
-    const force::RoughCylinderLattice l = lattice(w);
+    const force::RoughCylinderLattice l = force::rough_cylinder_lattice(w);
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> u(0, 1);
     int touching = 0;
@@ -78,9 +66,9 @@ TEST(RoughCylinder, FindsEveryTouchingWallSphereAtAnyTime) {
         const double r = w.radius - 1.3 * u(rng), z = -0.2 + 12.4 * u(rng), d = 0.8 + 0.4 * u(rng);
         const Vec3 x{r * std::cos(phi), r * std::sin(phi), z};
         const Vec3 v{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
-        Real energy = 0;
+        force::ContactTally tally;
         const Vec3 f = force::rough_cylinder_force<true, true>(l, kWall, kRange, w.sphere_diameter,
-                                                               x, v, d, t, &energy);
+                                                               x, v, d, t, &tally);
         Vec3 ref{0, 0, 0};
         const double rc = 0.5 * kRange * (d + w.sphere_diameter);
         for (const Vec3& s : rough_cylinder_spheres(w, t)) {
@@ -105,7 +93,7 @@ TEST(RoughCylinder, FindsEveryTouchingWallSphereAtAnyTime) {
 
 TEST(RoughCylinderForce, TurnsWithTheWallAndDoesNotDampSpheresMovingWithIt) {
     const RoughCylinder w = drum();
-    const force::RoughCylinderLattice l = lattice(w);
+    const force::RoughCylinderLattice l = force::rough_cylinder_lattice(w);
     // A sphere pressed against the wall near a wall sphere, at rest relative to the wall.
     const Vec3 s = rough_cylinder_spheres(w, 0.0)[40];
     const Vec3 x0 = s - (0.85 / w.radius) * Vec3{s.x, s.y, 0} + Vec3{0, 0, 0.3};
@@ -142,9 +130,7 @@ TEST(RoughEndCap, SpheresTurnRigidlyAndEveryTouchingOneIsFound) {
         const Vec3 d = later[k] - turn(at0[k], c.omega * 9.0);
         ASSERT_LT(std::sqrt(dot(d, d)), 1e-12);
     }
-    force::RoughCapLattice l;
-    l.z_cap = c.z, l.radius = c.radius, l.spacing = c.spacing;
-    l.row_spacing = 0.5 * std::sqrt(3.0) * c.spacing, l.omega = c.omega;
+    const force::RoughCapLattice l = force::rough_cap_lattice(c);
     std::mt19937_64 rng(13);
     std::uniform_real_distribution<double> u(0, 1);
     int touching = 0;
