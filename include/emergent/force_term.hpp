@@ -49,8 +49,12 @@ public:
 };
 
 /// Lennard-Jones 4 eps [(sigma/r)^12 - (sigma/r)^6], truncated at `cutoff` and shifted to zero
-/// there; cutoff = 2^(1/6) sigma gives the purely repulsive WCA potential.
-std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, double cutoff);
+/// there; cutoff = 2^(1/6) sigma gives the purely repulsive WCA potential. `generic` runs it
+/// through the pair loop with every feature compiled in and inactive (species table, pairwise
+/// damping with gamma 0, energy and virial every step): the same forces, for measuring what
+/// specialisation saves.
+std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, double cutoff,
+                                              bool generic = false);
 
 /// The purely repulsive WCA fluid of the hydrodynamic scenes (epsilon = sigma = 1).
 inline std::unique_ptr<ForceTerm> make_wca() {

@@ -25,7 +25,14 @@ public:
         box.hi = {cells * a, cells * a, cells * a};
         sim.set_box(box);
         sim.set_species_masses({1.0});
-        sim.add_force(make_lennard_jones(1.0, 1.0, config_.real("cutoff")));
+        const bool generic = config_.text("kernel") == "generic";
+        sim.add_force(make_lennard_jones(1.0, 1.0, config_.real("cutoff"), generic));
+        if (generic) {
+            // Terms a general engine would evaluate even when they do nothing: a zero field
+            // and a wall no particle reaches (it still tests every particle).
+            sim.add_force(make_uniform_field({0, 0, 0}));
+            sim.add_force(make_plane_wall(2, -1e6, +1, GranularPair{1000, 0, 0, 0}));
+        }
         if (config_.text("thermostat") == "bussi")
             sim.set_thermostat(
                 make_bussi_thermostat(temperature, config_.real("thermostat_tau"), seed + 1));
@@ -75,7 +82,11 @@ ProblemInfo lj_fluid_info() {
         .choice("lattice", "fcc", {"fcc", "random"},
                 "initial positions: fcc lattice, or uniform random (overlapping; for stress tests)")
         .real("cutoff", 1.122462048309373, 0, 10, "sigma",
-              "pair cutoff (energy-shifted); 2^(1/6) is WCA", true);
+              "pair cutoff (energy-shifted); 2^(1/6) is WCA", true)
+        .choice("kernel", "specialised", {"specialised", "generic"},
+                "specialised: unused features compiled out; generic: species table, pair "
+                "damping (zero), energy every step, a zero field and an unreached wall, all "
+                "evaluated (for benchmarks/specialisation_cost.sh)");
     info.presets["tiny"] = {{"n_cells", "4"}, {"equilibration_steps", "200"}, {"steps", "200"},
                             {"sample_every", "20"}};
     info.presets["small"] = {{"n_cells", "10"}, {"equilibration_steps", "2000"},

@@ -12,15 +12,22 @@ namespace {
 
 class LennardJonesTerm final : public ForceTerm {
 public:
-    explicit LennardJonesTerm(const force::LennardJones::Params& p) : params_(p), eval_(p) {}
+    LennardJonesTerm(const force::LennardJones::Params& p, bool generic)
+        : params_(p), eval_(p), generic_(generic), table_{&eval_, 1, 0.0} {}
 
-    std::string name() const override { return "lennard-jones"; }
+    std::string name() const override { return generic_ ? "lennard-jones-generic" : "lennard-jones"; }
     double cutoff() const override { return params_.cutoff; }
+    unsigned ghost_fields() const override {
+        return generic_ ? kPosition | kVelocity | kSpecies : kPosition;
+    }
 
     void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext&,
                     bool sample, ForceSums& sums) const override {
         // The one place where the run-time flag becomes a compile-time feature.
-        if (sample)
+        if (generic_)  // everything compiled in and evaluated, energy and virial every step
+            force::pair_forces_half_list<force::PairFeatures<true, true, true>>(store, list, eval_,
+                                                                               sums, table_);
+        else if (sample)
             force::pair_forces_half_list<force::PairFeatures<true>>(store, list, eval_, sums);
         else
             force::pair_forces_half_list<force::PairFeatures<false>>(store, list, eval_, sums);
@@ -29,18 +36,22 @@ public:
 private:
     force::LennardJones::Params params_;
     force::LennardJones eval_;
+    bool generic_;
+    force::PairTable<force::LennardJones> table_;
 };
 
 }  // namespace
 
-std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, double cutoff) {
+std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, double cutoff,
+                                              bool generic) {
     if (!(epsilon > 0) || !(sigma > 0) || !(cutoff > 0)) {
         std::ostringstream msg;
         msg << "lennard-jones: epsilon=" << epsilon << ", sigma=" << sigma << ", cutoff=" << cutoff
             << " must all be > 0";
         throw InputError(msg.str());
     }
-    return std::make_unique<LennardJonesTerm>(force::LennardJones::Params{epsilon, sigma, cutoff});
+    return std::make_unique<LennardJonesTerm>(force::LennardJones::Params{epsilon, sigma, cutoff},
+                                              generic);
 }
 
 }  // namespace emergent
