@@ -3,7 +3,7 @@
 # what the scene measures. A drum of D = 24, L = 16 with ~260 tetrahedra (the repose test's
 # drum) turns 10 revolutions at each dt; the dynamic angle of repose (mean over revolutions
 # 2-10, error from 4 blocks), the filled fraction and the largest contact overlap (as a fraction
-# of the contact range, sampled 10 times per revolution) are compared with the smallest dt. A dt at
+# of the sphere diameter, sampled 10 times per revolution) are compared with the smallest dt. A dt at
 # which the run stops (guards) is reported as such. REPEATS timed runs per dt (median).
 # usage: benchmarks/drum_work_precision.sh [REPEATS] [DTS]
 #        (defaults 3, "0.00125 0.0025 0.005 0.0075 0.01 0.015 0.02 0.03 0.04")
@@ -13,7 +13,7 @@ repeats=${1:-3}
 dts=${2:-"0.00125 0.0025 0.005 0.0075 0.01 0.015 0.02 0.03 0.04"}
 . benchmarks/common.sh
 drum=(--set diameter=24 --set length=16 --set bodies=260 --set progress_interval=0)
-printf '| dt | steps/rev | wall s/rev (1 rank) | repose angle (deg) | fill | overlap / r_c: mean of sample max, largest | outcome |\n|---|---|---|---|---|---|---|\n'
+printf '| dt | steps/rev | wall s/rev (1 rank) | repose angle (deg) | fill | overlap (diameters): mean of sample max, largest | outcome |\n|---|---|---|---|---|---|---|\n'
 for dt in $dts; do
   steps=$(awk -v dt="$dt" 'BEGIN { printf "%d", 10 * 6.283185307179586 / (0.2 * dt) + 0.5 }')
   every=$(awk -v s="$steps" 'BEGIN { printf "%d", s / 100 }')

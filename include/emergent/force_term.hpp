@@ -25,8 +25,8 @@ struct ForceContext {
 struct ForceSums {
     double potential = 0;  ///< sum of potential energy over owned particles' share
     double virial = 0;     ///< W = sum over pairs of r_ij . f_ij (trace of the virial tensor)
-    /// Largest overlap of any granular contact, as a fraction of its contact range r_c
-    /// (sphere pairs and walls); stays -1 when no term has contacts.
+    /// Largest overlap of any granular contact, in units of its sphere diameter (a pair's mean
+    /// diameter); stays -1 when no term has contacts.
     double max_overlap = -1;
 };
 

@@ -48,7 +48,7 @@ struct ThermoSample {
     double temperature = 0, pressure = 0;
     Vec3 momentum{0, 0, 0};
     Vec3 angular_momentum{0, 0, 0};  ///< about the origin, from unwrapped positions
-    /// Largest granular overlap / contact range at the last sampling step; -1 without contacts.
+    /// Largest granular overlap / sphere diameter at the last sampling step; -1 without contacts.
     double max_overlap = -1;
 };
 

@@ -34,7 +34,7 @@ void RunGuard::after_step(const Simulation& sim, bool now) {
 void RunGuard::on_sample(const Simulation& sim, const ThermoSample& t) {
     if (max_overlap_ > 0 && t.max_overlap > max_overlap_) {
         std::ostringstream msg;
-        msg << "granular contacts overlap by " << t.max_overlap << " of their range at step "
+        msg << "granular contacts overlap by " << t.max_overlap << " sphere diameters at step "
             << sim.step_index() << ", beyond guard.max_overlap=" << max_overlap_
             << " (time step too large for k_n, or particles driven into each other?)";
         throw InstabilityError(msg.str());

@@ -53,10 +53,9 @@ Schema run_schema() {
                  "steps between state checks (finite values, force bound); 0: only at checkpoints")
         .real("guard.max_force", 1e5, 0, 1e300, "epsilon/sigma",
               "stop when a particle's force exceeds this (0: no bound)")
-        .real("guard.max_overlap", 1.0, 0, 1e300, "1",
-              "granular scenes: stop when a contact's overlap exceeds this fraction of its "
-              "contact range (1: centres meet, or a centre reaches a wall), checked at sampling "
-              "steps (0: no bound)")
+        .real("guard.max_overlap", 1.0, 0, 1e300, "diameters",
+              "granular scenes: stop when a contact's overlap exceeds this many sphere diameters "
+              "(a pair's mean diameter), checked at sampling steps (0: no bound)")
         .real("guard.max_energy_drift", 0.1, 0, 1e300, "epsilon",
               "energy-conserving runs only (no thermostat, damping or friction): stop when total "
               "energy per particle drifts further (0: no bound)")

@@ -29,13 +29,13 @@ EMERGENT_HD inline Vec3 contact_force(const Vec3& n, Real overlap, const Vec3& v
     return f;
 }
 
-/// What sampling steps add up over contacts: elastic energy and the largest overlap as a
-/// fraction of the contact range.
+/// What sampling steps add up over contacts: elastic energy and the largest overlap in units
+/// of the contact's sphere diameter (the pair's mean diameter).
 struct ContactTally {
     Real energy = 0, max_overlap = 0;
-    EMERGENT_HD void add(Real k_n, Real overlap, Real range) {
+    EMERGENT_HD void add(Real k_n, Real overlap, Real diameter) {
         energy += 0.5 * k_n * overlap * overlap;
-        if (overlap > max_overlap * range) max_overlap = overlap / range;
+        if (overlap > max_overlap * diameter) max_overlap = overlap / diameter;
     }
 };
 

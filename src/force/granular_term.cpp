@@ -44,7 +44,7 @@ void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSet
             fi += fij;
             f[j] -= fij;
             if constexpr (F::sample) {
-                worst = std::max(worst, (rc - dist) / rc);
+                worst = std::max(worst, (rc - dist) / (0.5 * (di + d[j])));
                 const Real w = j < n_owned ? 1.0 : 0.5;
                 potential += w * 0.5 * p.k_n * (rc - dist) * (rc - dist);
                 virial += w * dot(r, fij);
@@ -91,7 +91,7 @@ struct WallLoop {
             s.force[i] += force::contact_force<Damping, Friction>(n, rc - h, s.velocity[i] - velocity, p);
             if (sample) {
                 sums.potential += 0.5 * p.k_n * (rc - h) * (rc - h);
-                sums.max_overlap = std::max(sums.max_overlap, (rc - h) / rc);
+                sums.max_overlap = std::max(sums.max_overlap, (rc - h) / s.diameter[i]);
             }
         }
         if (sample) sums.max_overlap = std::max(sums.max_overlap, 0.0);

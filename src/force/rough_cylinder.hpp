@@ -75,7 +75,7 @@ EMERGENT_HD inline Vec3 rough_cylinder_force(const RoughCylinderLattice& w, cons
         const Vec3 at = (w.radius / r) * Vec3{x.x, x.y, 0};
         const Real overlap = rc_surface - gap;
         f += contact_force<Damping, Friction>(n, overlap, v - w.wall_velocity(at), p);
-        if (tally) tally->add(p.k_n, overlap, rc_surface);
+        if (tally) tally->add(p.k_n, overlap, d);
     }
     // Rings within reach along z, and within them the spheres within reach around.
     const Real zk = (x.z - w.z_first) / w.row_spacing, dk = reach / w.row_spacing;
@@ -96,7 +96,7 @@ EMERGENT_HD inline Vec3 rough_cylinder_force(const RoughCylinderLattice& w, cons
             const Real dist = std::sqrt(s2);
             f += contact_force<Damping, Friction>((1 / dist) * s, reach - dist,
                                                   v - w.wall_velocity(xw), p);
-            if (tally) tally->add(p.k_n, reach - dist, reach);
+            if (tally) tally->add(p.k_n, reach - dist, 0.5 * (d + d_wall));
         }
     }
     return f;

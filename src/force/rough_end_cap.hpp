@@ -71,7 +71,7 @@ EMERGENT_HD inline Vec3 rough_cap_force(const RoughCapLattice& cap, const Granul
             const Real dist = std::sqrt(s2);
             f += contact_force<Damping, Friction>((1 / dist) * sep, reach - dist,
                                                   v - cap.wall_velocity(xw), p);
-            if (tally) tally->add(p.k_n, reach - dist, reach);
+            if (tally) tally->add(p.k_n, reach - dist, 0.5 * (d + d_cap));
         }
     }
     return f;
