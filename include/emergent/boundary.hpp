@@ -77,6 +77,8 @@ public:
     virtual void apply(ParticleStore& store, const BoundaryContext& context, std::string& fault) = 0;
     /// Exchange summed over every hit since the rule was made, on this rank.
     const WallExchange& exchange() const { return exchange_; }
+    /// Sets the tally (a run continued from a checkpoint).
+    void set_exchange(const WallExchange& e) { exchange_ = e; }
 
 protected:
     WallExchange exchange_;

@@ -89,6 +89,13 @@ public:
     WallLayerThermostat* add_wall_layer(std::unique_ptr<WallLayerThermostat> layer);
     /// A rule's exchange summed over all ranks. Collective.
     WallExchange global_exchange(const BoundaryRule& rule) const;
+    /// Every boundary rule's global exchange (hits, momentum x y z, angular momentum, energy)
+    /// and every wall layer's energy, flattened in the order added: what a checkpoint keeps so
+    /// that a continued run's tallies go on from where they were. Collective.
+    std::vector<double> exchange_tallies() const;
+    /// Sets the tallies from exchange_tallies() of the same scene (rank 0 holds the global
+    /// sums, other ranks zero). InputError if the layout does not match.
+    void restore_exchange_tallies(const std::vector<double>& tallies);
     /// Keeps the particle if x lies in this rank's domain.
     void add_particle(const Vec3& x, const Vec3& v, int species, std::int64_t id,
                       double diameter = 1.0);

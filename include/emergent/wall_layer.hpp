@@ -27,6 +27,8 @@ public:
     /// Kinetic energy the layer rescaling has given the fluid since it was made (all ranks;
     /// the same on every rank). Negative where it cools.
     double energy() const { return energy_; }
+    /// Sets the tally (a run continued from a checkpoint).
+    void set_energy(double e) { energy_ = e; }
 
 private:
     int axis_;

@@ -166,6 +166,9 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     std::vector<ThermoSample> series;  // samples of the measured phase
     if (req.restart) {
         io::restore_checkpoint(req.restart_file, sim, *req.restart);
+        // Checkpoints from before tallies were kept continue with tallies from zero.
+        if (!req.restart->exchange_tallies.empty())
+            sim.restore_exchange_tallies(req.restart->exchange_tallies);
         series = req.restart->series;
     } else {
         problem->place_particles(sim);

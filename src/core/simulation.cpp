@@ -518,6 +518,35 @@ void Simulation::add_body(int kind, const Vec3& com, const Quat& orientation, co
         if (com[d] < lo[d] || com[d] >= hi[d]) return;
     e.rigid.add(kind, com, orientation, velocity, omega, id, first_particle_id);
 }
+std::vector<double> Simulation::exchange_tallies() const {
+    std::vector<double> t;
+    for (const auto& rule : engine_->boundaries) {
+        const WallExchange e = global_exchange(*rule);
+        t.insert(t.end(), {double(e.hits), e.momentum.x, e.momentum.y, e.momentum.z,
+                           e.angular_momentum, e.energy});
+    }
+    for (const auto& layer : engine_->wall_layers) t.push_back(layer->energy());  // global already
+    return t;
+}
+
+void Simulation::restore_exchange_tallies(const std::vector<double>& t) {
+    Engine& e = *engine_;
+    if (t.size() != 6 * e.boundaries.size() + e.wall_layers.size())
+        throw InputError("checkpoint: exchange tallies of " + std::to_string(t.size()) +
+                         " values do not fit this scene's walls");
+    const bool keep = rank() == 0;
+    std::size_t k = 0;
+    for (auto& rule : e.boundaries) {
+        WallExchange x;
+        if (keep)
+            x.hits = static_cast<long long>(t[k]), x.momentum = {t[k + 1], t[k + 2], t[k + 3]},
+            x.angular_momentum = t[k + 4], x.energy = t[k + 5];
+        rule->set_exchange(x);
+        k += 6;
+    }
+    for (auto& layer : e.wall_layers) layer->set_energy(t[k++]);
+}
+
 bool Simulation::conserves_energy() const {
     if (engine_->thermostat || !engine_->wall_layers.empty()) return false;
     for (const auto& term : engine_->forces)

@@ -51,6 +51,9 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         write_small_dataset(root, "series", H5T_NATIVE_DOUBLE,
                             {series.size(), static_cast<hsize_t>(kSeriesColumns)}, rows.data(),
                             comm);
+        const std::vector<double> tallies = sim.exchange_tallies();
+        write_small_dataset(root, "exchange_tallies", H5T_NATIVE_DOUBLE, {tallies.size()},
+                            tallies.data(), comm);
 
         {
             H5Id group = create_group(root, "fields");
@@ -134,6 +137,7 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
             h.config[name] = read_string_attribute(params, name);
         }
     }
+    if (exists(root, "exchange_tallies")) h.exchange_tallies = read_doubles(root, "exchange_tallies");
     const std::vector<double> rows = read_doubles(root, "series");
     for (std::size_t k = 0; k < rows.size() / kSeriesColumns; ++k) {
         const double* r = &rows[k * kSeriesColumns];

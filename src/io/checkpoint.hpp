@@ -22,6 +22,8 @@ struct CheckpointHeader {
     std::vector<ThermoSample> series;           ///< samples of the measured phase so far
     /// Field intervals in progress: grid name -> (global sums, samples).
     std::map<std::string, std::pair<std::vector<double>, long long>> fields;
+    /// Simulation::exchange_tallies() at the checkpoint (wall exchanges, wall-layer energies).
+    std::vector<double> exchange_tallies;
 };
 
 /// Writes the state of `sim` to `path` atomically (path.tmp, then rename). Collective.
