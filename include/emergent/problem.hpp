@@ -38,6 +38,11 @@ public:
     virtual Measures analyse_fields(const FieldGrid& /*grid*/, const FieldFrame& /*frame*/) {
         return {};
     }
+    /// The scene's own running state (accumulated averages, the last frame's tallies) that a
+    /// checkpoint keeps, as named arrays; the same on every rank. restore_state() gets them back
+    /// on a continued run, after build().
+    virtual Measures saved_state() const { return {}; }
+    virtual void restore_state(const std::map<std::string, std::vector<double>>& /*state*/) {}
 };
 
 /// Named sets of parameter values, e.g. presets["tiny"]["n_cells"] = "4".

@@ -103,6 +103,28 @@ public:
                 {"mean_slip_length", {slip_.mean(), slip_.standard_error()}}};
     }
 
+    Measures saved_state() const override {
+        return {{"stress_samples", stress_.samples()}, {"rate_samples", rate_.samples()},
+                {"density_samples", density_.samples()},
+                {"temperature_samples", temperature_.samples()},
+                {"slip_samples", slip_.samples()},
+                {"last_frame", {last_top_, last_bottom_, last_time_}}};
+    }
+
+    void restore_state(const std::map<std::string, std::vector<double>>& state) override {
+        const std::pair<const char*, BlockAverage*> series[] = {
+            {"stress_samples", &stress_}, {"rate_samples", &rate_}, {"density_samples", &density_},
+            {"temperature_samples", &temperature_}, {"slip_samples", &slip_}};
+        for (const auto& [name, average] : series) {
+            const auto it = state.find(name);
+            if (it != state.end())
+                for (double x : it->second) average->add(x);
+        }
+        const auto last = state.find("last_frame");
+        if (last != state.end() && last->second.size() == 3)
+            last_top_ = last->second[0], last_bottom_ = last->second[1], last_time_ = last->second[2];
+    }
+
 private:
     Config config_;
     double width_, height_, speed_, start_time_;

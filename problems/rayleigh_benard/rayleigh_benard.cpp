@@ -103,6 +103,24 @@ public:
         return m;
     }
 
+    Measures saved_state() const override {
+        return {{"heat_flux_samples", flux_.samples()},
+                {"cell_count_samples", cells_.samples()},
+                {"last_frame", {have_last_ ? 1.0 : 0.0, last_bottom_, last_top_, last_time_}}};
+    }
+
+    void restore_state(const std::map<std::string, std::vector<double>>& state) override {
+        auto get = [&](const char* name) {
+            const auto it = state.find(name);
+            return it == state.end() ? std::vector<double>{} : it->second;
+        };
+        for (double x : get("heat_flux_samples")) flux_.add(x);
+        for (double x : get("cell_count_samples")) cells_.add(x);
+        const std::vector<double> last = get("last_frame");
+        if (last.size() == 4)
+            have_last_ = last[0] != 0, last_bottom_ = last[1], last_top_ = last[2], last_time_ = last[3];
+    }
+
 private:
     /// Energy given to the fluid through the bottom (hot) and top (cold) walls so far: wall
     /// collisions plus the rescaling of the layers next to them.

@@ -142,7 +142,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
             }
             if (checkpoint)
                 io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series,
-                                     output.fields());
+                                     output.fields(), problem.saved_state());
         }
     } catch (const InstabilityError& e) {
         throw InstabilityError(std::string(e.what()) + "; " +
@@ -169,6 +169,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         // Checkpoints from before tallies were kept continue with tallies from zero.
         if (!req.restart->exchange_tallies.empty())
             sim.restore_exchange_tallies(req.restart->exchange_tallies);
+        problem->restore_state(req.restart->scene_state);
         series = req.restart->series;
     } else {
         problem->place_particles(sim);

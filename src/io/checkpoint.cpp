@@ -16,6 +16,19 @@ namespace {
 constexpr const char* kFormat = "emergent-checkpoint-1";
 constexpr int kSeriesColumns = 11;
 
+/// Names of a group's members, in name order.
+std::vector<std::string> member_names(hid_t group) {
+    H5G_info_t info;
+    H5Gget_info(group, &info);
+    std::vector<std::string> names;
+    for (hsize_t k = 0; k < info.nlinks; ++k) {
+        char name[256];
+        H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name, H5P_DEFAULT);
+        names.emplace_back(name);
+    }
+    return names;
+}
+
 std::vector<double> pack_series(const std::vector<ThermoSample>& series) {
     std::vector<double> rows;
     for (const ThermoSample& t : series)
@@ -28,7 +41,7 @@ std::vector<double> pack_series(const std::vector<ThermoSample>& series) {
 
 void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
                       const std::vector<ThermoSample>& series,
-                      const std::vector<FieldAccumulator>& fields) {
+                      const std::vector<FieldAccumulator>& fields, const Measures& scene_state) {
     MPI_Comm comm = sim.comm();
     const std::string tmp = path + ".tmp";
     {
@@ -54,6 +67,12 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         const std::vector<double> tallies = sim.exchange_tallies();
         write_small_dataset(root, "exchange_tallies", H5T_NATIVE_DOUBLE, {tallies.size()},
                             tallies.data(), comm);
+        {
+            H5Id group = create_group(root, "scene_state");
+            for (const auto& [name, values] : scene_state)
+                write_small_dataset(group, name, H5T_NATIVE_DOUBLE, {values.size()},
+                                    values.data(), comm);
+        }
 
         {
             H5Id group = create_group(root, "fields");
@@ -149,15 +168,15 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
         t.pressure = r[7], t.momentum = {r[8], r[9], r[10]};
         h.series.push_back(t);
     }
+    if (exists(root, "scene_state")) {
+        H5Id group = open_group(root, "scene_state");
+        for (const std::string& name : member_names(group))
+            h.scene_state[name] = read_doubles(group, name);
+    }
     if (exists(root, "fields")) {
         H5Id group = open_group(root, "fields");
-        H5G_info_t info;
-        H5Gget_info(group, &info);
-        for (hsize_t k = 0; k < info.nlinks; ++k) {
-            char name[256];
-            H5Lget_name_by_idx(group, ".", H5_INDEX_NAME, H5_ITER_INC, k, name, sizeof name,
-                               H5P_DEFAULT);
-            H5Id set(h5_check(H5Dopen2(group, name, H5P_DEFAULT), "checkpoint field"));
+        for (const std::string& name : member_names(group)) {
+            H5Id set(h5_check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "checkpoint field"));
             h.fields[name] = {read_doubles(group, name), read_integer_attribute(set, "samples")};
         }
     }

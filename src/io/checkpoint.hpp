@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "emergent/config.hpp"
+#include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 #include "observe/field_accumulator.hpp"
 
@@ -24,12 +25,15 @@ struct CheckpointHeader {
     std::map<std::string, std::pair<std::vector<double>, long long>> fields;
     /// Simulation::exchange_tallies() at the checkpoint (wall exchanges, wall-layer energies).
     std::vector<double> exchange_tallies;
+    /// Problem::saved_state() at the checkpoint.
+    std::map<std::string, std::vector<double>> scene_state;
 };
 
 /// Writes the state of `sim` to `path` atomically (path.tmp, then rename). Collective.
 void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
                       const std::vector<ThermoSample>& series,
-                      const std::vector<FieldAccumulator>& fields);
+                      const std::vector<FieldAccumulator>& fields,
+                      const Measures& scene_state = {});
 
 /// Reads the header; InputError if the file is missing, truncated or not a checkpoint.
 CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm);
