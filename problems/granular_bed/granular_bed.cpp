@@ -3,6 +3,7 @@
 // y; the granular benchmark and validation workhorse (compare LAMMPS `pair_style gran/hooke`).
 #include <cmath>
 
+#include "emergent/body_shapes.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
@@ -32,10 +33,9 @@ public:
         sim.add_force(make_granular_contacts(g));
         sim.add_force(make_uniform_field({0, 0, -c_.real("gravity")}));
         if (c_.text("particles") == "tetrahedra") {
-            // Four spheres at the corners of a regular tetrahedron of the given arm length.
-            const double a = c_.real("arm") / std::sqrt(3.0), d = c_.real("diameter");
-            tetrahedron_ = sim.add_body_kind({{a, a, a}, {a, -a, -a}, {-a, a, -a}, {-a, -a, a}},
-                                             {0, 0, 0, 0}, {d, d, d, d});
+            const double d = c_.real("diameter");
+            tetrahedron_ = sim.add_body_kind(regular_tetrahedron(c_.real("arm")), {0, 0, 0, 0},
+                                             {d, d, d, d});
         }
         // The floor touches with the same law; its damping and friction act on the sphere's
         // whole mass rather than a pair's reduced mass, hence the factor 2 on gamma.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "emergent/body_shapes.hpp"
 #include "emergent/error.hpp"
 #include "emergent/lattice.hpp"
 #include "emergent/problem.hpp"
@@ -21,16 +22,10 @@ constexpr double kTwoPi = 6.283185307179586;
 constexpr double kRange = 1.122462048309373;  // paper: r_c = 2^(1/6) x mean diameter
 constexpr int kSmall = 0, kBig = 1;           // body kinds, and the species of their spheres
 
-/// Spheres of a regular tetrahedron with centre-to-sphere distance `arm`.
-std::vector<Vec3> tetrahedron(double arm) {
-    const double a = arm / std::sqrt(3.0);
-    return {{a, a, a}, {a, -a, -a}, {-a, a, -a}, {-a, -a, a}};
-}
-
 /// Smallest sphere-sphere distance between two identically oriented tetrahedra of arm `arm`
 /// whose centres are one lattice vector of a simple cubic lattice of spacing `a` apart.
 double closest_on_lattice(double arm, double a) {
-    const std::vector<Vec3> s = tetrahedron(arm);
+    const std::vector<Vec3> s = regular_tetrahedron(arm);
     double best = 1e300;
     for (int i = -1; i <= 1; ++i)
         for (int j = -1; j <= 1; ++j)
@@ -131,8 +126,8 @@ public:
             }
 
         const std::vector<double> d4(4, d_);
-        small_ = sim.add_body_kind(tetrahedron(c_.real("arm_small")), std::vector<int>(4, kSmall), d4);
-        big_ = sim.add_body_kind(tetrahedron(c_.real("arm_big")), std::vector<int>(4, kBig), d4);
+        small_ = sim.add_body_kind(regular_tetrahedron(c_.real("arm_small")), std::vector<int>(4, kSmall), d4);
+        big_ = sim.add_body_kind(regular_tetrahedron(c_.real("arm_big")), std::vector<int>(4, kBig), d4);
     }
 
     void place_particles(Simulation& sim) override {
@@ -178,14 +173,13 @@ public:
         const ParticleStore& b = sim.bodies();
         const std::size_t n = b.n_owned();
         std::vector<double> z(n), r(n);
-        std::vector<char> big(n), small(n);
+        std::vector<char> big(n);
         double sums[3] = {0, 0, 0};  // x, y of the bed's centroid, count
         for (std::size_t i = 0; i < n; ++i) {
             const Vec3& x = b.position[i];
             z[i] = x.z;
             r[i] = std::hypot(x.x, x.y);
             big[i] = b.species[i] == big_;
-            small[i] = !big[i];
             sums[0] += x.x, sums[1] += x.y, sums[2] += 1;
         }
         double total[3];
@@ -198,16 +192,15 @@ public:
         // (a geometric bias, not segregation).
         const double interior = radius_ - 2 * clearance_;
         std::vector<double> depth;
-        std::vector<char> small_interior;
+        std::vector<char> small_interior, big_interior;
         for (std::size_t i = 0; i < n; ++i)
             if (r[i] < interior) {
                 depth.push_back(std::hypot(b.position[i].x - cx, b.position[i].y - cy));
-                small_interior.push_back(small[i]);
+                small_interior.push_back(!big[i]);
+                big_interior.push_back(big[i]);
             }
         const MixtureBins axial = mixture_bins(z, big, 0, length_, int(c_.integer("axial_slices")), sim.comm());
         const MixtureBins radial = mixture_bins(r, big, 0, radius_, int(c_.integer("radial_shells")), sim.comm());
-        std::vector<char> big_interior(small_interior.size());
-        for (std::size_t i = 0; i < big_interior.size(); ++i) big_interior[i] = !small_interior[i];
         const MixtureBins about_centre = mixture_bins(depth, big_interior, 0, radius_,
                                                       int(c_.integer("radial_shells")), sim.comm());
         const SplitSegregation core = split_segregation(depth, small_interior, sim.comm());

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cmath>
+#include <string>
 
 #include "emergent/force_term.hpp"
 #include "emergent/vec3.hpp"
@@ -28,6 +29,9 @@ EMERGENT_HD inline Vec3 contact_force(const Vec3& n, Real overlap, const Vec3& v
     }
     return f;
 }
+
+/// Throws InputError naming `what` unless k_n > 0 and gamma_n, gamma_s, mu >= 0.
+void check_granular_pair(const GranularPair& p, const std::string& what);
 
 /// What sampling steps add up over contacts: elastic energy and the largest overlap in units
 /// of the contact's sphere diameter (the pair's mean diameter).

@@ -171,7 +171,9 @@ private:
     Vec3 velocity_;
 };
 
-void check_pair(const GranularPair& p, const std::string& what) {
+}  // namespace
+
+void force::check_granular_pair(const GranularPair& p, const std::string& what) {
     if (!(p.k_n > 0) || p.gamma_n < 0 || p.gamma_s < 0 || p.mu < 0) {
         std::ostringstream msg;
         msg << what << ": k_n=" << p.k_n << " must be > 0 and gamma_n=" << p.gamma_n
@@ -180,12 +182,10 @@ void check_pair(const GranularPair& p, const std::string& what) {
     }
 }
 
-}  // namespace
-
 std::unique_ptr<ForceTerm> make_granular_contacts(const GranularSettings& g) {
     if (g.n_species < 1 || g.pairs.size() != static_cast<std::size_t>(g.n_species * g.n_species))
         throw InputError("granular contacts: need n_species^2 pair entries");
-    for (const auto& p : g.pairs) check_pair(p, "granular contacts");
+    for (const auto& p : g.pairs) force::check_granular_pair(p, "granular contacts");
     if (!(g.range_factor > 0) || !(g.max_diameter > 0))
         throw InputError("granular contacts: range_factor and max_diameter must be > 0");
     return std::make_unique<GranularContacts>(g);
@@ -200,7 +200,7 @@ std::unique_ptr<ForceTerm> make_plane_wall(int axis, double position, int side,
                                            const Vec3& wall_velocity) {
     if (axis < 0 || axis > 2 || (side != 1 && side != -1))
         throw InputError("plane wall: axis must be 0..2 and side +1 or -1");
-    check_pair(contact, "plane wall");
+    force::check_granular_pair(contact, "plane wall");
     return std::make_unique<PlaneWall>(axis, position, side, contact, range_factor, wall_velocity);
 }
 

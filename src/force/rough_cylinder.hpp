@@ -61,9 +61,9 @@ inline RoughCylinderLattice rough_cylinder_lattice(const RoughCylinder& w) {
 /// through the wall spheres' centres (r_c = range d / 2), which keeps spheres from slipping
 /// through the gaps of the grid. Adds energy and overlap to *tally when it is not null.
 template <bool Damping, bool Friction>
-EMERGENT_HD inline Vec3 rough_cylinder_force(const RoughCylinderLattice& w, const GranularPair& p,
-                                             Real range, Real d_wall, const Vec3& x, const Vec3& v,
-                                             Real d, Real t, ContactTally* tally) {
+EMERGENT_HD inline Vec3 rough_wall_force(const RoughCylinderLattice& w, const GranularPair& p,
+                                         Real range, Real d_wall, const Vec3& x, const Vec3& v,
+                                         Real d, Real t, ContactTally* tally) {
     Vec3 f{0, 0, 0};
     const Real r = std::sqrt(x.x * x.x + x.y * x.y);
     const Real reach = 0.5 * range * (d + d_wall);

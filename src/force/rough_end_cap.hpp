@@ -47,9 +47,9 @@ inline RoughCapLattice rough_cap_lattice(const RoughEndCap& c) {
 /// Contact force on one sphere (centre x, velocity v, diameter d) from the cap's spheres at
 /// time t, r_c = range (d + d_cap) / 2. Adds energy and overlap to *tally when not null.
 template <bool Damping, bool Friction>
-EMERGENT_HD inline Vec3 rough_cap_force(const RoughCapLattice& cap, const GranularPair& p,
-                                        Real range, Real d_cap, const Vec3& x, const Vec3& v,
-                                        Real d, Real t, ContactTally* tally) {
+EMERGENT_HD inline Vec3 rough_wall_force(const RoughCapLattice& cap, const GranularPair& p,
+                                         Real range, Real d_cap, const Vec3& x, const Vec3& v,
+                                         Real d, Real t, ContactTally* tally) {
     Vec3 f{0, 0, 0};
     const Real reach = 0.5 * range * (d + d_cap);
     if (!(std::fabs(x.z - cap.z_cap) < reach)) return f;

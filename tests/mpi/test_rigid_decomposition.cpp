@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "emergent/body_shapes.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
 #include "support/scene_fixture.hpp"
@@ -35,11 +36,8 @@ std::unique_ptr<Simulation> cluster(MPI_Comm comm) {
     sim->add_force(make_granular_contacts(g));
     // Small (arm 0.6) and big (arm 1.2) tetrahedra as in the drum; the big one is asymmetric
     // in mass (two heavy spheres) so it is no spherical top.
-    const double a = 0.6 / std::sqrt(3.0), b = 1.2 / std::sqrt(3.0);
-    const int small = sim->add_body_kind({{a, a, a}, {a, -a, -a}, {-a, a, -a}, {-a, -a, a}},
-                                         {0, 0, 0, 0}, {1, 1, 1, 1});
-    const int big = sim->add_body_kind({{b, b, b}, {b, -b, -b}, {-b, b, -b}, {-b, -b, b}},
-                                       {0, 1, 0, 1}, {1, 1, 1, 1});
+    const int small = sim->add_body_kind(regular_tetrahedron(0.6), {0, 0, 0, 0}, {1, 1, 1, 1});
+    const int big = sim->add_body_kind(regular_tetrahedron(1.2), {0, 1, 0, 1}, {1, 1, 1, 1});
     std::int64_t id = 0;
     for (int z = 0; z < 3; ++z)
         for (int y = 0; y < 3; ++y)

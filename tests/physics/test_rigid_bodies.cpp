@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "emergent/body_shapes.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
 
@@ -27,9 +28,7 @@ std::unique_ptr<Simulation> tetrahedron_gas(MPI_Comm comm, int n, double spacing
     GranularSettings g;
     g.pairs = {GranularPair{1000, gamma_n, 0, 0}};
     sim->add_force(make_granular_contacts(g));
-    const double a = 0.6 / std::sqrt(3.0);
-    const int kind = sim->add_body_kind({{a, a, a}, {a, -a, -a}, {-a, a, -a}, {-a, -a, a}},
-                                        {0, 0, 0, 0}, {1, 1, 1, 1});
+    const int kind = sim->add_body_kind(regular_tetrahedron(0.6), {0, 0, 0, 0}, {1, 1, 1, 1});
     std::int64_t id = 0;
     for (int z = 0; z < n; ++z)
         for (int y = 0; y < n; ++y)

@@ -27,6 +27,23 @@ Vec3 turn(const Vec3& x, double a) {
     return {std::cos(a) * x.x - std::sin(a) * x.y, std::sin(a) * x.x + std::cos(a) * x.y, x.z};
 }
 
+/// Reference for the index search: the contact law summed over every listed wall sphere (each
+/// moving at omega z^ x s); counts the touching ones into `touching`.
+Vec3 all_spheres_force(const std::vector<Vec3>& spheres, double omega, const Vec3& x,
+                       const Vec3& v, double d, double d_wall, int& touching) {
+    Vec3 ref{0, 0, 0};
+    const double rc = 0.5 * kRange * (d + d_wall);
+    for (const Vec3& s : spheres) {
+        const Vec3 sep = x - s;
+        const double dist = std::sqrt(dot(sep, sep));
+        if (dist >= rc) continue;
+        ++touching;
+        ref += force::contact_force<true, true>((1 / dist) * sep, rc - dist,
+                                                v - Vec3{-omega * s.y, omega * s.x, 0}, kWall);
+    }
+    return ref;
+}
+
 }  // namespace
 
 TEST(RoughCylinder, WallSpheresTurnRigidlyWithTheWallOnAStaggeredGrid) {
@@ -67,18 +84,10 @@ TEST(RoughCylinder, FindsEveryTouchingWallSphereAtAnyTime) {
         const Vec3 x{r * std::cos(phi), r * std::sin(phi), z};
         const Vec3 v{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
         force::ContactTally tally;
-        const Vec3 f = force::rough_cylinder_force<true, true>(l, kWall, kRange, w.sphere_diameter,
-                                                               x, v, d, t, &tally);
-        Vec3 ref{0, 0, 0};
-        const double rc = 0.5 * kRange * (d + w.sphere_diameter);
-        for (const Vec3& s : rough_cylinder_spheres(w, t)) {
-            const Vec3 sep = x - s;
-            const double dist = std::sqrt(dot(sep, sep));
-            if (dist >= rc) continue;
-            ++touching;
-            ref += force::contact_force<true, true>((1 / dist) * sep, rc - dist,
-                                                    v - Vec3{-w.omega * s.y, w.omega * s.x, 0}, kWall);
-        }
+        const Vec3 f = force::rough_wall_force<true, true>(l, kWall, kRange, w.sphere_diameter,
+                                                           x, v, d, t, &tally);
+        Vec3 ref = all_spheres_force(rough_cylinder_spheres(w, t), w.omega, x, v, d,
+                                     w.sphere_diameter, touching);
         const double gap = w.radius - r, rs = 0.5 * kRange * d;
         if (gap < rs) {
             const Vec3 n{-x.x / r, -x.y / r, 0}, at = (w.radius / r) * Vec3{x.x, x.y, 0};
@@ -98,22 +107,22 @@ TEST(RoughCylinderForce, TurnsWithTheWallAndDoesNotDampSpheresMovingWithIt) {
     const Vec3 s = rough_cylinder_spheres(w, 0.0)[40];
     const Vec3 x0 = s - (0.85 / w.radius) * Vec3{s.x, s.y, 0} + Vec3{0, 0, 0.3};
     const Vec3 v0{-w.omega * x0.y, w.omega * x0.x, 0};
-    const Vec3 f0 = force::rough_cylinder_force<true, true>(l, kWall, kRange, 1.0, x0, v0 + Vec3{0.3, -0.2, 0.1}, 1.0, 0, nullptr);
+    const Vec3 f0 = force::rough_wall_force<true, true>(l, kWall, kRange, 1.0, x0, v0 + Vec3{0.3, -0.2, 0.1}, 1.0, 0, nullptr);
     ASSERT_GT(std::sqrt(dot(f0, f0)), 1.0);
     for (double t : {1.3, 7.9, 31.4}) {
         // Same place and motion relative to the wall, later: the force is the turned force.
         const double a = w.omega * t;
         const Vec3 x = turn(x0, a);
         const Vec3 v = Vec3{-w.omega * x.y, w.omega * x.x, 0} + turn(Vec3{0.3, -0.2, 0.1}, a);
-        const Vec3 f = force::rough_cylinder_force<true, true>(l, kWall, kRange, 1.0, x, v, 1.0, t, nullptr);
+        const Vec3 f = force::rough_wall_force<true, true>(l, kWall, kRange, 1.0, x, v, 1.0, t, nullptr);
         const Vec3 d = f - turn(f0, a);
         EXPECT_LT(std::sqrt(dot(d, d)), 1e-9 * std::sqrt(dot(f0, f0))) << "t=" << t;
     }
     // Co-moving with the wall: the contact separations keep their length, so there is no
     // normal damping. (Sliding friction remains: as for sphere pairs, the model takes the
     // spheres' centre velocities, whose difference omega x (x - x_wall) is tangential.)
-    const Vec3 fc = force::rough_cylinder_force<true, true>(l, kWall, kRange, 1.0, x0, v0, 1.0, 0, nullptr);
-    const Vec3 fe = force::rough_cylinder_force<false, true>(l, kWall, kRange, 1.0, x0, v0, 1.0, 0, nullptr);
+    const Vec3 fc = force::rough_wall_force<true, true>(l, kWall, kRange, 1.0, x0, v0, 1.0, 0, nullptr);
+    const Vec3 fe = force::rough_wall_force<false, true>(l, kWall, kRange, 1.0, x0, v0, 1.0, 0, nullptr);
     const Vec3 d = fc - fe;
     EXPECT_LT(std::sqrt(dot(d, d)), 1e-9 * std::sqrt(dot(fe, fe)));
 }
@@ -138,17 +147,10 @@ TEST(RoughEndCap, SpheresTurnRigidlyAndEveryTouchingOneIsFound) {
         const double t = 40 * u(rng), r = 9 * std::sqrt(u(rng)), phi = 6.283185307179586 * u(rng);
         const Vec3 x{r * std::cos(phi), r * std::sin(phi), c.z - 1.2 * u(rng)};
         const Vec3 v{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5};
-        const double d = 0.8 + 0.4 * u(rng), rc = 0.5 * kRange * (d + c.sphere_diameter);
-        const Vec3 f = force::rough_cap_force<true, true>(l, kWall, kRange, c.sphere_diameter, x, v, d, t, nullptr);
-        Vec3 ref{0, 0, 0};
-        for (const Vec3& s : rough_end_cap_spheres(c, t)) {
-            const Vec3 sep = x - s;
-            const double dist = std::sqrt(dot(sep, sep));
-            if (dist >= rc) continue;
-            ++touching;
-            ref += force::contact_force<true, true>((1 / dist) * sep, rc - dist,
-                                                    v - Vec3{-c.omega * s.y, c.omega * s.x, 0}, kWall);
-        }
+        const double d = 0.8 + 0.4 * u(rng);
+        const Vec3 f = force::rough_wall_force<true, true>(l, kWall, kRange, c.sphere_diameter, x, v, d, t, nullptr);
+        const Vec3 ref = all_spheres_force(rough_end_cap_spheres(c, t), c.omega, x, v, d,
+                                           c.sphere_diameter, touching);
         const Vec3 diff = f - ref;
         ASSERT_LT(std::sqrt(dot(diff, diff)), 1e-9 * (1 + std::sqrt(dot(ref, ref)))) << "trial " << trial;
     }
