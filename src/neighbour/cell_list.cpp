@@ -8,6 +8,8 @@
 namespace emergent {
 
 void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double min_cell) {
+    lo_ = lo;
+    hi_ = hi;
     for (int d = 0; d < 3; ++d) {
         const double len = hi[d] - lo[d];
         const int inner = std::max(1, static_cast<int>(std::floor(len / min_cell)));
@@ -15,6 +17,8 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double min_ce
         const int layers = static_cast<int>(std::ceil(shell / width - 1e-12));
         n_[d] = inner + 2 * layers;
         origin_[d] = lo[d] - layers * width;
+        first_inner_[d] = layers;
+        end_inner_[d] = layers + inner;
         inverse_width_[d] = 1.0 / width;
     }
     inner_.assign(n_cells(), 0);

@@ -2,6 +2,7 @@
 // Cells over a domain and its ghost shell, for linear-cost neighbour search.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -22,6 +23,15 @@ public:
         int c[3];
         for (int d = 0; d < 3; ++d) {
             int k = static_cast<int>((x[d] - origin_[d]) * inverse_width_[d]);
+            // The domain faces decide which side a point is on: rounding in the line above can
+            // put a point lying on a face (a lattice start puts many there) one cell off, a
+            // ghost into the domain or an owned particle into the shell.
+            if (x[d] < lo_[d])
+                k = std::min(k, first_inner_[d] - 1);
+            else if (x[d] >= hi_[d])
+                k = std::max(k, end_inner_[d]);
+            else
+                k = std::clamp(k, first_inner_[d], end_inner_[d] - 1);
             c[d] = k < 0 ? 0 : (k >= n_[d] ? n_[d] - 1 : k);
         }
         return (c[2] * n_[1] + c[1]) * n_[0] + c[0];
@@ -50,8 +60,9 @@ public:
 private:
     void count(const Vec3* x, std::size_t n);
 
-    Vec3 origin_{};
+    Vec3 origin_{}, lo_{}, hi_{};
     double inverse_width_[3] = {1, 1, 1};
+    int first_inner_[3] = {0, 0, 0}, end_inner_[3] = {1, 1, 1};  ///< inner cells per axis
     int n_[3] = {1, 1, 1};
     std::vector<char> inner_;
     std::vector<std::uint32_t> start_, members_, cell_;

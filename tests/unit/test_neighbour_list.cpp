@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
@@ -83,4 +84,38 @@ TEST(NeighbourList, RebuildIsRequestedOnlyBeyondHalfTheSkin) {
     EXPECT_FALSE(list.needs_rebuild(store, MPI_COMM_SELF));
     store.position[1].x += 0.02;
     EXPECT_TRUE(list.needs_rebuild(store, MPI_COMM_SELF));
+}
+
+// A point on a domain face belongs to the side the face rule says (lo inside, hi outside),
+// whatever the rounding of its cell coordinate: a lattice start puts particles exactly there
+// (an 80 x 80 x 40 layer on two ranks with skin 0.5 once put a ghost at y = 40 into an inner
+// cell, and the build stopped).
+TEST(CellList, PointsOnDomainFacesFallOnTheirSide) {
+    int checked = 0;
+    for (int trial = 0; trial < 2000; ++trial) {
+        const double lo = std::floor(200 * uniform_open(11, trial, 0) - 100) * 0.5;
+        const double len = 4 + 120 * uniform_open(11, trial, 1);
+        const double cell = 1.0 + 1.5 * uniform_open(11, trial, 2);
+        const Vec3 lo3{lo, -0.5, 0.0}, hi3{lo + len, 40.0, 80.0};
+        CellList cells;
+        cells.setup(lo3, hi3, cell, cell);
+        const Vec3 mid = 0.5 * (lo3 + hi3);
+        for (int d = 0; d < 3; ++d) {
+            const double inside[2] = {lo3[d], std::nextafter(hi3[d], lo3[d])};
+            const double outside[2] = {hi3[d], std::nextafter(lo3[d], hi3[d] - 1e9)};
+            for (int k = 0; k < 2; ++k) {
+                Vec3 in = mid, out = mid;
+                in[d] = inside[k];
+                out[d] = outside[k];
+                EXPECT_TRUE(cells.is_inner(cells.cell_of(in))) << "axis " << d << " at " << in[d];
+                EXPECT_FALSE(cells.is_inner(cells.cell_of(out))) << "axis " << d << " at " << out[d];
+                ++checked;
+            }
+        }
+    }
+    EXPECT_EQ(checked, 2000 * 6);
+    // The case that failed in a run: domain y in [0, 40), list cutoff 1.122462 + 0.5.
+    CellList cells;
+    cells.setup({0, 0, -0.5}, {80, 40, 40.5}, 1.622462, 1.622462);
+    EXPECT_FALSE(cells.is_inner(cells.cell_of({0.678, 40.0, 0.674})));
 }
