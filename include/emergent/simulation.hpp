@@ -18,9 +18,22 @@
 namespace emergent {
 
 /// Engine settings a scene does not choose (they come from the run parameters).
+/// How a time step is split into kicks (v += h f/m) and drifts (x += h v). Both are
+/// symplectic, time-reversible and of second order.
+enum class Integrator {
+    /// kick dt/2, drift dt, kick dt/2: one force evaluation per step.
+    VelocityVerlet,
+    /// Omelyan, Mryglod & Folk (2002), the velocity form of their second-order minimum-error
+    /// scheme: kick l dt, drift dt/2, kick (1 - 2l) dt, drift dt/2, kick l dt with
+    /// l = 0.1932. Two force evaluations per step for a leading error about ten times smaller
+    /// than velocity Verlet's (it pays where accuracy at a given cost matters more than steps).
+    Omelyan,
+};
+
 struct RunSettings {
     double dt = 0.005;
     double skin = 0.3;
+    Integrator integrator = Integrator::VelocityVerlet;
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
 };
 

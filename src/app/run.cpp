@@ -79,15 +79,17 @@ Int3 parse_grid(const std::string& scene, const std::string& text) {
     return g;
 }
 
-namespace {
-
 RunSettings run_settings(const Config& cfg) {
     RunSettings settings;
     settings.dt = cfg.real("dt");
     settings.skin = cfg.real("skin");
+    settings.integrator =
+        cfg.text("integrator") == "omelyan" ? Integrator::Omelyan : Integrator::VelocityVerlet;
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
     return settings;
 }
+
+namespace {
 
 void prepare_output_dir(const std::string& dir, MPI_Comm comm) {
     if (dir.empty()) return;

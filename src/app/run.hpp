@@ -8,6 +8,7 @@
 
 #include "emergent/config.hpp"
 #include "emergent/problem.hpp"
+#include "emergent/simulation.hpp"
 #include "emergent/vec3.hpp"
 #include "io/checkpoint.hpp"
 
@@ -27,5 +28,8 @@ std::string run_problem(const RunRequest& request, MPI_Comm comm);
 
 /// Parses "NXxNYxNZ" or "auto" (0x0x0).
 Int3 parse_grid(const std::string& scene, const std::string& text);
+
+/// The engine settings a scene's configuration names (dt, skin, integrator, rank grid).
+RunSettings run_settings(const Config& cfg);
 
 }  // namespace emergent::app

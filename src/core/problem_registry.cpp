@@ -34,6 +34,10 @@ Schema run_schema() {
     Schema s;
     s.real("dt", 0.005, 0, 1, "tau", "integration time step", true)
         .real("skin", 0.3, 0, 5, "sigma", "neighbour-list skin beyond the largest cutoff", true)
+        .choice("integrator", "verlet", {"verlet", "omelyan"},
+                "time-step splitting: verlet (velocity Verlet, one force evaluation per step) or "
+                "omelyan (Omelyan-Mryglod-Folk minimum-error scheme, two evaluations per step, "
+                "~10x smaller leading error; see benchmarks/RESULTS.md for when it pays)")
         .integer("equilibration_steps", 1000, 0, 1e12, "steps",
                  "steps run first, excluded from averages and timing")
         .integer("steps", 10000, 0, 1e12, "steps", "measured steps (averaged and timed)")

@@ -15,7 +15,7 @@
 #include "emergent/error.hpp"
 #include "emergent/execution.hpp"
 #include "emergent/random.hpp"
-#include "integrate/velocity_verlet.hpp"
+#include "integrate/kick_drift.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "rigid/rigid_bodies.hpp"
@@ -123,33 +123,52 @@ struct Simulation::Engine {
         }
     }
 
-    void compute_forces(bool sample) {
+    /// Forces at the current positions, which are those of time `at` (walls that move with
+    /// time are placed there).
+    void compute_forces(bool sample, double at) {
         PhaseTimer timer(times.force);
         std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
         sums = ForceSums{};
-        const ForceContext context{&mass, box, time};
+        const ForceContext context{&mass, box, at};
         for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
         if (bodies()) rigid.sum_forces(store);
     }
 
-    void kick_drift() {
+    /// v += kick f/m, x += drift v; then the walls act on the drift.
+    void kick_drift(double kick, double drift) {
         PhaseTimer timer(times.integrate);
         exec::for_each(exec::Host{}, store.n_owned(),
                        integrate::KickDrift{store.position.data(), store.velocity.data(),
                                             store.force.data(), store.species.data(),
-                                            inverse_mass.data(), settings.dt});
+                                            inverse_mass.data(), kick, drift});
         // Spheres of bodies were moved as free particles above; the bodies now place them.
-        if (bodies()) rigid.kick_drift(store, settings.dt);
-        const BoundaryContext context{&mass, settings.dt, step, &box};
+        if (bodies()) rigid.kick_drift(store, kick, drift);
+        const BoundaryContext context{&mass, drift, step, &box};
         for (auto& rule : boundaries) rule->apply(store, context, boundary_fault);
     }
 
-    void kick() {
+    void kick(double kick) {
         PhaseTimer timer(times.integrate);
         exec::for_each(exec::Host{}, store.n_owned(),
                        integrate::Kick{store.velocity.data(), store.force.data(),
-                                       store.species.data(), inverse_mass.data(), settings.dt});
-        if (bodies()) rigid.kick(store, settings.dt);
+                                       store.species.data(), inverse_mass.data(), kick});
+        if (bodies()) rigid.kick(store, kick);
+    }
+
+    /// After a drift: the list is rebuilt if some particle moved beyond half the skin since
+    /// the last build, otherwise the ghosts follow their owners.
+    void follow_drift() {
+        bool needed;
+        {
+            PhaseTimer timer(times.communicate);
+            needed = list.needs_rebuild(store, comm);
+            if (!needed) {
+                halo.gather_positions(store);
+                // Contact forces with damping or friction need their partners' velocities.
+                if (ghost_fields & kVelocity) halo.gather_velocities(store);
+            }
+        }
+        if (needed) rebuild();
     }
 
     bool is_free(std::size_t i) const { return !store.has_rigid_fields() || store.body[i] < 0; }
@@ -325,7 +344,7 @@ void Simulation::initialise() {
     }
     e.rebuild();
     e.count_bodies();
-    e.compute_forces(true);
+    e.compute_forces(true, e.time);
 }
 
 void Simulation::check_guards(const GuardLimits& limits) const {
@@ -425,28 +444,36 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     e.time = time;
     e.rebuilds = rebuilds;
     e.count_bodies();
-    e.compute_forces(true);
+    e.compute_forces(true, e.time);
 }
 
 void Simulation::step(bool sample) {
     Engine& e = *engine_;
-    e.kick_drift();
-    bool rebuild;
-    {
-        PhaseTimer timer(e.times.communicate);
-        rebuild = e.list.needs_rebuild(e.store, e.comm);
-        if (!rebuild) {
-            e.halo.gather_positions(e.store);
-            // Contact forces with damping or friction need their partners' velocities.
-            if (e.ghost_fields & kVelocity) e.halo.gather_velocities(e.store);
-        }
+    const double dt = e.settings.dt;
+    switch (e.settings.integrator) {
+    case Integrator::VelocityVerlet:
+        e.kick_drift(0.5 * dt, dt);
+        e.follow_drift();
+        e.compute_forces(sample, e.time + dt);
+        e.kick(0.5 * dt);
+        break;
+    case Integrator::Omelyan: {
+        // lambda minimises the norm of the leading error term (Omelyan, Mryglod & Folk,
+        // Comput. Phys. Commun. 146 (2002) 188, eq. 31).
+        constexpr double lambda = 0.1931833275037836;
+        e.kick_drift(lambda * dt, 0.5 * dt);
+        e.follow_drift();
+        e.compute_forces(false, e.time + 0.5 * dt);
+        e.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt);
+        e.follow_drift();
+        e.compute_forces(sample, e.time + dt);
+        e.kick(lambda * dt);
+        break;
     }
-    if (rebuild) e.rebuild();
-    e.compute_forces(sample);
-    e.kick();
+    }
     e.apply_thermostat();
     ++e.step;
-    e.time += e.settings.dt;
+    e.time += dt;
     e.apply_wall_layers();  // keyed by the step just completed
 }
 

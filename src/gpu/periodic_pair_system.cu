@@ -21,7 +21,7 @@
 #include "gpu/build_list_split.cuh"
 #include "gpu/device_buffer.cuh"
 #include "gpu/device_cells.hpp"
-#include "integrate/velocity_verlet.hpp"
+#include "integrate/kick_drift.hpp"
 
 namespace emergent::gpu {
 
@@ -298,7 +298,7 @@ struct PeriodicPairSystem::Impl {
             PartTimer t(profiling, stream, prof.kick_drift);
             exec::for_each(on_device, n,
                            integrate::KickDrift{x.data(), v.data(), f.data(), species.data(),
-                                                inverse_mass.data(), spec.dt});
+                                                inverse_mass.data(), 0.5 * spec.dt, spec.dt});
         }
         // The device decided at the end of the last step; the drift above runs meanwhile.
         EMERGENT_CUDA_CHECK(cudaEventSynchronize(flag_ready));
@@ -323,7 +323,7 @@ struct PeriodicPairSystem::Impl {
             // The second kick and the rebuild check in one pass over the particles.
             PartTimer t(profiling, stream, prof.kick);
             with_rebuild_check(exec::Then<integrate::Kick, PredictedDisplacementExceeds>{
-                {v.data(), f.data(), species.data(), inverse_mass.data(), spec.dt}, rebuild_check()});
+                {v.data(), f.data(), species.data(), inverse_mass.data(), 0.5 * spec.dt}, rebuild_check()});
         }
         if (thermostat && (steps_done + 1) % thermostat_interval == 0) {
             // As the CPU engine: after the second kick, keyed by the index of the step before

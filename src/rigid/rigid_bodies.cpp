@@ -97,14 +97,14 @@ void RigidBodies::index_constituents(const ParticleStore& store) {
     }
 }
 
-void RigidBodies::kick_drift(ParticleStore& store, double dt) {
+void RigidBodies::kick_drift(ParticleStore& store, double kick, double drift) {
     for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
         const BodyFrame& f = frames_[bodies_.species[b]];
-        bodies_.velocity[b] += (0.5 * dt / f.mass) * bodies_.force[b];
-        bodies_.position[b] += dt * bodies_.velocity[b];
+        bodies_.velocity[b] += (kick / f.mass) * bodies_.force[b];
+        bodies_.position[b] += drift * bodies_.velocity[b];
         Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b], f.inertia};
-        torque_kick(r, bodies_.torque[b], 0.5 * dt);
-        rotate_freely(r, dt);
+        torque_kick(r, bodies_.torque[b], kick);
+        rotate_freely(r, drift);
         bodies_.orientation[b] = r.q;
         bodies_.angular_momentum[b] = r.p;
         place(store, b, false);
@@ -124,12 +124,12 @@ void RigidBodies::sum_forces(const ParticleStore& store) {
     }
 }
 
-void RigidBodies::kick(ParticleStore& store, double dt) {
+void RigidBodies::kick(ParticleStore& store, double kick) {
     for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
         const BodyFrame& f = frames_[bodies_.species[b]];
-        bodies_.velocity[b] += (0.5 * dt / f.mass) * bodies_.force[b];
+        bodies_.velocity[b] += (kick / f.mass) * bodies_.force[b];
         Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b], f.inertia};
-        torque_kick(r, bodies_.torque[b], 0.5 * dt);
+        torque_kick(r, bodies_.torque[b], kick);
         bodies_.angular_momentum[b] = r.p;
         place(store, b, true);
     }

@@ -49,10 +49,12 @@ public:
     /// After particles were reordered: where each body's constituents are.
     void index_constituents(const ParticleStore& store);
 
-    /// Velocity-Verlet halves for bodies (NO_SQUISH for rotation), then constituents placed.
-    void kick_drift(ParticleStore& store, double dt);
+    /// Splitting stages for bodies, durations given (velocity Verlet: kick dt/2 and drift dt):
+    /// momentum and angular momentum kicked, then translation and free rotation (NO_SQUISH),
+    /// then constituents placed.
+    void kick_drift(ParticleStore& store, double kick, double drift);
     void sum_forces(const ParticleStore& store);
-    void kick(ParticleStore& store, double dt);
+    void kick(ParticleStore& store, double kick);
 
     /// Kinetic energy (translation + rotation), momentum, angular momentum about the origin
     /// (unwrapped centres) of the owned bodies; and their degrees of freedom (6 each).

@@ -31,12 +31,8 @@ struct BuiltScene {
 inline BuiltScene build_scene(MPI_Comm comm, const std::string& scene,
                               const std::vector<std::string>& sets) {
     const Config config = scene_config(scene, sets);
-    RunSettings settings;
-    settings.dt = config.real("dt");
-    settings.skin = config.real("skin");
-    settings.grid = app::parse_grid(scene, config.text("grid"));
     BuiltScene s;
-    s.sim = std::make_unique<Simulation>(comm, settings);
+    s.sim = std::make_unique<Simulation>(comm, app::run_settings(config));
     s.problem = ProblemRegistry::instance().find(scene)->factory(config);
     s.problem->build(*s.sim);
     s.problem->place_particles(*s.sim);

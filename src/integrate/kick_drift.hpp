@@ -1,41 +1,43 @@
 // SPDX-License-Identifier: MIT
-// Velocity-Verlet stages as per-particle functors (the same code on CPU and GPU).
+// The stages every splitting integrator is made of (velocity Verlet, Omelyan's minimum-error
+// scheme), as per-particle functors: the same code on CPU and GPU. A stage's kick and drift
+// durations are given, so one functor serves every scheme.
 #pragma once
 
 #include "emergent/vec3.hpp"
 
 namespace emergent::integrate {
 
-/// v += dt/2 f/m, then x += dt v: the first half of a velocity-Verlet step.
+/// v += kick f/m, then x += drift v.
 struct KickDrift {
     Vec3* x;
     Vec3* v;
     const Vec3* f;
     const int* species;
     const Real* inverse_mass;  ///< per species
-    Real dt;
+    Real kick, drift;          ///< durations (velocity Verlet: dt/2 and dt)
 
     EMERGENT_HD void operator()(std::size_t i) const {
-        const Real h = 0.5 * dt * inverse_mass[species[i]];
+        const Real h = kick * inverse_mass[species[i]];
         v[i].x += h * f[i].x;
         v[i].y += h * f[i].y;
         v[i].z += h * f[i].z;
-        x[i].x += dt * v[i].x;
-        x[i].y += dt * v[i].y;
-        x[i].z += dt * v[i].z;
+        x[i].x += drift * v[i].x;
+        x[i].y += drift * v[i].y;
+        x[i].z += drift * v[i].z;
     }
 };
 
-/// v += dt/2 f/m with the new forces: the second half.
+/// v += kick f/m with the new forces (velocity Verlet: the second half kick, dt/2).
 struct Kick {
     Vec3* v;
     const Vec3* f;
     const int* species;
     const Real* inverse_mass;
-    Real dt;
+    Real kick;
 
     EMERGENT_HD void operator()(std::size_t i) const {
-        const Real h = 0.5 * dt * inverse_mass[species[i]];
+        const Real h = kick * inverse_mass[species[i]];
         v[i].x += h * f[i].x;
         v[i].y += h * f[i].y;
         v[i].z += h * f[i].z;
