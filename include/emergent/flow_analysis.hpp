@@ -22,6 +22,16 @@ struct RollCensus {
 RollCensus count_rolls(const std::vector<double>& velocity, const std::vector<double>& noise,
                        double first, double spacing, double threshold = 3.0);
 
+/// How much a model of a profile's standard errors (model[k], e.g. kT/m over the samples of a
+/// cell, which ignores that successive samples are correlated) underestimates its real noise,
+/// measured from two successive frames of the profile: if the profile itself changed little
+/// between them, their difference is noise, with variance model_a^2 + model_b^2 times the
+/// factor squared. Returns that factor, at least 1 (a changing profile inflates it: the
+/// estimate errs towards more noise). Cells where either value is non-finite are skipped;
+/// 1 if none is left.
+double noise_factor_from_frames(const std::vector<double>& a, const std::vector<double>& model_a,
+                                const std::vector<double>& b, const std::vector<double>& model_b);
+
 /// Strongest non-uniform mode of a profile sampled at n cell centres over a length L.
 struct DominantMode {
     int index = 0;          ///< mode number m (0 if the profile is empty or uniform)

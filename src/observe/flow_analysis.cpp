@@ -4,10 +4,24 @@
 
 #include <fftw3.h>
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
 namespace emergent {
+
+double noise_factor_from_frames(const std::vector<double>& a, const std::vector<double>& model_a,
+                                const std::vector<double>& b, const std::vector<double>& model_b) {
+    double difference = 0, model = 0;
+    const std::size_t n = std::min({a.size(), b.size(), model_a.size(), model_b.size()});
+    for (std::size_t k = 0; k < n; ++k) {
+        const double d = a[k] - b[k], m = model_a[k] * model_a[k] + model_b[k] * model_b[k];
+        if (!std::isfinite(d) || !std::isfinite(m)) continue;
+        difference += d * d;
+        model += m;
+    }
+    return model > 0 ? std::max(1.0, std::sqrt(difference / model)) : 1.0;
+}
 
 RollCensus count_rolls(const std::vector<double>& velocity, const std::vector<double>& noise,
                        double first, double spacing, double threshold) {
