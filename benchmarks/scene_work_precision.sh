@@ -11,6 +11,7 @@
 # dt = 0.001. Rates (flux, torque) are slopes of the walls' cumulative exchange over the run,
 # with the standard error of 5 block slopes; means carry block standard errors. A case that
 # goes unstable is reported as stopped. REPEATS timed runs per case (median wall time).
+# Writes the table to stdout and OUT_DIR/work_precision.png (difference against cost).
 # usage: benchmarks/scene_work_precision.sh SCENE [OUT_DIR] [REPEATS] [TAU]
 #        (defaults /tmp/emergent_swp_SCENE, 3, 1000)
 set -euo pipefail
@@ -45,4 +46,4 @@ for r in $(seq "$repeats"); do
   for dt in 0.002 0.0025 0.004 0.005 0.00625 0.008; do run_case verlet "$dt" "$r"; done
   for dt in 0.0025 0.005 0.00625 0.008 0.01; do run_case omelyan "$dt" "$r"; done
 done
-/usr/bin/python3 scripts/scene_work_precision_report "$scene" "$out"
+/usr/bin/python3 scripts/scene_work_precision_report "$scene" "$out" "$out/work_precision.png"
