@@ -6,7 +6,7 @@
 #include <cmath>
 #include <limits>
 
-#include "emergent/error.hpp"
+#include "emergent/couette_stability.hpp"
 #include "emergent/flow_analysis.hpp"
 #include "emergent/lattice.hpp"
 #include "emergent/problem.hpp"
@@ -18,25 +18,6 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-/// Critical Reynolds number (Re = omega r_i d / nu, outer cylinder at rest) from linear
-/// stability for radius ratio eta; 0 outside the tabulated range. Re_c sqrt(1 - eta) varies
-/// slowly and smoothly with eta, so it is interpolated linearly between the tabulated ratios:
-/// 0.5 and 0.95 from Recktenwald, Luecke & Mueller, Phys. Rev. E 48, 4444 (1993); 2/3 and 5/7
-/// as used for the paper's two systems (76.3 and 81.1).
-double critical_reynolds(double eta) {
-    const double table[][2] = {{0.5, 68.19}, {2.0 / 3.0, 76.3}, {5.0 / 7.0, 81.1}, {0.95, 184.99}};
-    const int n = sizeof(table) / sizeof(table[0]);
-    if (eta < table[0][0] - 1e-12 || eta > table[n - 1][0] + 1e-12) return 0;
-    for (int k = 0; k + 1 < n; ++k) {
-        const double e0 = table[k][0], e1 = table[k + 1][0];
-        if (eta > e1 + 1e-12) continue;
-        const double f0 = table[k][1] * std::sqrt(1 - e0), f1 = table[k + 1][1] * std::sqrt(1 - e1);
-        const double w = std::clamp((eta - e0) / (e1 - e0), 0.0, 1.0);
-        return (f0 + w * (f1 - f0)) / std::sqrt(1 - eta);
-    }
-    return table[n - 1][1];
-}
-
 class TaylorCouette final : public Problem {
 public:
     explicit TaylorCouette(const Config& c)
@@ -47,11 +28,16 @@ public:
         const double nu = c.real("kinematic_viscosity");
         const double eta = r_i_ / r_o_, d = r_o_ - r_i_;
         reynolds_ = omega_ * r_i_ * d / nu;
-        const double re_c = c.real("critical_reynolds") > 0 ? c.real("critical_reynolds")
-                                                            : critical_reynolds(eta);
-        if (!(re_c > 0))
-            throw InputError(c.scene() + ": no tabulated critical Reynolds number for r_inner/r_outer = " +
-                             std::to_string(eta) + " (0.5 to 0.95); set critical_reynolds");
+        // Linear stability of the run's Couette flow: where vortices appear, and which of the
+        // axial modes the cylinder's length admits grows fastest at the run's Re (the one a
+        // run started from noise is most likely to show).
+        const CouetteStability stability(eta);
+        const CouetteStability::Onset onset = stability.onset();
+        const double re_c = c.real("critical_reynolds") > 0 ? c.real("critical_reynolds") : onset.reynolds;
+        const CouetteStability::AdmissibleMode fastest =
+            stability.fastest_admissible_mode(reynolds_, length_ / d, periodic_ends_);
+        linear_stability_ = {re_c, kTwoPi / onset.wavenumber * d, double(fastest.vortices),
+                             kTwoPi / fastest.wavenumber * d, fastest.growth_rate * nu / (d * d)};
         const double geometry = 4 * d / (r_o_ + r_i_);
         taylor_ = geometry * reynolds_ * reynolds_;
         taylor_critical_ = geometry * re_c * re_c;
@@ -159,7 +145,8 @@ public:
                 {"reynolds", {reynolds_}},
                 {"taylor", {taylor_}},
                 {"taylor_critical", {taylor_critical_}},
-                {"taylor_over_critical", {taylor_ / taylor_critical_}}};
+                {"taylor_over_critical", {taylor_ / taylor_critical_}},
+                {"linear_stability", linear_stability_}};
     }
 
     Measures analyse_fields(const FieldGrid& grid, const FieldFrame& f) override {
@@ -225,6 +212,9 @@ private:
     int wedge_n_;
     bool periodic_ends_;
     double reynolds_ = 0, taylor_ = 0, taylor_critical_ = 0;
+    /// Re_c, critical wavelength, and the fastest-growing admissible mode at the run's Re:
+    /// its vortex count, wavelength and growth rate (1/tau).
+    std::vector<double> linear_stability_;
     BoundaryRule *inner_ = nullptr, *outer_ = nullptr;
     std::vector<double> last_vr_, last_noise_;  ///< the last frame's mid-gap v_r and model noise
 };
@@ -257,7 +247,8 @@ ProblemInfo taylor_couette_info() {
               "planar-couette measures at the small preset's mid-gap state (rho 0.444, T 2.1, "
               "benchmarks/RESULTS.md); measure it anew for other states", true)
         .real("critical_reynolds", 0, 0, 1e6, "1",
-              "Re_c for the radius ratio (0: from the linear-stability table, eta 0.5 to 0.95)")
+              "Re_c for the radius ratio (0: from linear stability, computed for the run's "
+              "radius ratio)")
         .integer("flow_cells_r", 10, 1, 100000, "1", "radial cells of the flow grid")
         .integer("flow_cells_z", 40, 1, 1000000, "1", "axial cells of the flow grid")
         .real("velocity_sample_inefficiency", 4, 1, 1e6, "1",
