@@ -5,3 +5,19 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+
+# scene_sweep OUT_DIR RANKS STEPS KEY VALUE... -- SCENE_ARGS...: one run of SCENE_ARGS per
+# value of KEY, into OUT_DIR/KEY_VALUE; runs already complete there are kept, so a sweep that
+# was stopped continues where it was.
+scene_sweep() {
+  local out=$1 ranks=$2 steps=$3 key=$4 values=() v
+  shift 4
+  while [ "$1" != "--" ]; do values+=("$1"); shift; done
+  shift
+  mkdir -p "$out"
+  for v in "${values[@]}"; do
+    [ -f "$out/${key}_$v/summary.json" ] && continue
+    mpirun -q --oversubscribe -np "$ranks" "$exe" run "$@" --set "$key=$v" --set steps="$steps" \
+      --set progress_interval=0 -o "$out/${key}_$v" >/dev/null
+  done
+}

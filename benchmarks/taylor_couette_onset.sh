@@ -15,15 +15,8 @@ out=${1:-/tmp/emergent_onset}
 omegas=${2:-"0.06 0.08 0.1"}
 steps=${3:-100000}
 ranks=${4:-2}
-exe=$PWD/build/bin/emergent
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-mkdir -p "$out"
-for w in $omegas; do
-  dir=$out/omega_$w
-  if [ -f "$dir/summary.json" ]; then continue; fi
-  mpirun -q --oversubscribe -np "$ranks" "$exe" run taylor-couette --preset small --set omega="$w" \
-    --set steps="$steps" --set progress_interval=0 -o "$dir" >/dev/null
-done
+source benchmarks/common.sh
+scene_sweep "$out" "$ranks" "$steps" omega $omegas -- taylor-couette --preset small
 /usr/bin/python3 - "$out" $omegas <<'PY'
 import os, sys
 sys.path.insert(0, "scripts")

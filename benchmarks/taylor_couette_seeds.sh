@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# How many Taylor vortices the `small` system settles to: the same run (omega 0.1, Re ~108)
+# from several seeds. With L = 4 d and elastic end caps, 4 vortices (lambda = 2 d, the linear-
+# stability wavelength, the paper's count) and 5 (lambda = 1.6 d) both fit; which one a run
+# picks is decided while the rolls grow out of noise, so only a count over seeds says how often
+# each appears. For each seed: the vortex census over the last quarter of the run (most common
+# count), the dominant axial cosine mode m of v_r at mid-gap (wavelength 2 L / m) and its
+# amplitude, the history of the dominant mode, and the growth rate of the rolls while they are
+# small (compare with build/bin/emergent-couette-stability --reynolds 108). Runs already
+# complete in OUT_DIR are reused.
+# usage: benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS]
+#        (defaults /tmp/emergent_tc_seeds, "1 2 3 4 5 6", 80000 = 400 tau, 2)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-/tmp/emergent_tc_seeds}
+seeds=${2:-"1 2 3 4 5 6"}
+steps=${3:-80000}
+ranks=${4:-2}
+source benchmarks/common.sh
+scene_sweep "$out" "$ranks" "$steps" seed $seeds -- taylor-couette --preset small
+/usr/bin/python3 - "$out" $seeds <<'PY'
+import collections, os, sys
+sys.path.insert(0, "scripts")
+import numpy as np
+from emergentpy import Run
+out, seeds = sys.argv[1], sys.argv[2:]
+length, gap, nu = 100.0, 25.0, 1.156  # the small preset; nu measured at its mid-gap state
+print("| seed | vortices, last quarter (most common, range) | dominant mode m over time | "
+      "wavelength / d (end) | amplitude (end) | growth rate, A in 0.03-0.15 (nu/d^2) |")
+print("|---|---|---|---|---|---|")
+tally = collections.Counter()
+for s in seeds:
+    run = Run(os.path.join(out, f"seed_{s}"))
+    t, count = run.observable("vortex_count")
+    count = count.reshape(-1).astype(int)
+    last = count[-max(1, len(count) // 4):]
+    common = collections.Counter(last).most_common(1)[0][0]
+    tally[common] += 1
+    tm, mode = run.observable("axial_mode")
+    mode = mode.reshape(len(tm), -1)
+    m, amp = mode[:, 0].astype(int), mode[:, 2]
+    # History of the dominant mode: each change with the time it happened.
+    history = [f"{m[0]}"] + [f"{m[i]} (t={tm[i]:.0f})" for i in range(1, len(m)) if m[i] != m[i - 1]]
+    # Linear growth: ln A against t while A is well above the noise (~0.01) and well below
+    # saturation (~0.45), before its first maximum.
+    peak = int(np.argmax(amp))
+    sel = [i for i in range(peak + 1) if 0.03 <= amp[i] <= 0.15]
+    rate = "n/a"
+    if len(sel) >= 2:
+        slope = np.polyfit(tm[sel], np.log(amp[sel]), 1)[0]
+        rate = f"{slope * gap**2 / nu:.1f} (m = {m[sel[-1]]}, {len(sel)} frames)"
+    wavelength = 2 * length / m[-1] / gap if m[-1] > 0 else float("nan")
+    print(f"| {s} | {common} ({last.min()}-{last.max()}) | {' -> '.join(history)} | "
+          f"{wavelength:.2f} | {amp[-1]:.3f} | {rate} |")
+print("\nvortex counts over seeds: " + ", ".join(f"{k}: {v}" for k, v in sorted(tally.items())))
+PY
