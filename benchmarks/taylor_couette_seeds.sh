@@ -6,8 +6,8 @@
 # each appears. For each seed: the vortex census over the last quarter of the run (most common
 # count), the dominant axial cosine mode m of v_r at mid-gap (wavelength 2 L / m) and its
 # amplitude, the history of the dominant mode, and the growth rate of the rolls while they are
-# small (compare with build/bin/emergent-couette-stability --reynolds 108). Runs already
-# complete in OUT_DIR are reused.
+# small (compare with build/bin/emergent-couette-stability --reynolds 108); OUT_DIR/seeds.png
+# draws amplitude and mode against time. Runs already complete in OUT_DIR are reused.
 # usage: benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS]
 #        (defaults /tmp/emergent_tc_seeds, "1 2 3 4 5 6", 80000 = 400 tau, 2)
 set -euo pipefail
@@ -21,6 +21,9 @@ scene_sweep "$out" "$ranks" "$steps" seed $seeds -- taylor-couette --preset smal
 /usr/bin/python3 - "$out" $seeds <<'PY'
 import collections, os, sys
 sys.path.insert(0, "scripts")
+import matplotlib
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
 import numpy as np
 from emergentpy import Run
 out, seeds = sys.argv[1], sys.argv[2:]
@@ -29,6 +32,7 @@ print("| seed | vortices, last quarter (most common, range) | dominant mode m ov
       "wavelength / d (end) | amplitude (end) | growth rate, A in 0.03-0.15 (nu/d^2) |")
 print("|---|---|---|---|---|---|")
 tally = collections.Counter()
+fig, (ax_a, ax_m) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
 for s in seeds:
     run = Run(os.path.join(out, f"seed_{s}"))
     t, count = run.observable("vortex_count")
@@ -50,7 +54,18 @@ for s in seeds:
         slope = np.polyfit(tm[sel], np.log(amp[sel]), 1)[0]
         rate = f"{slope * gap**2 / nu:.1f} (m = {m[sel[-1]]}, {len(sel)} frames)"
     wavelength = 2 * length / m[-1] / gap if m[-1] > 0 else float("nan")
+    ax_a.semilogy(tm, amp, "o-", ms=3, label=f"seed {s}: {common} vortices")
+    ax_m.step(tm, m, where="post")
     print(f"| {s} | {common} ({last.min()}-{last.max()}) | {' -> '.join(history)} | "
           f"{wavelength:.2f} | {amp[-1]:.3f} | {rate} |")
 print("\nvortex counts over seeds: " + ", ".join(f"{k}: {v}" for k, v in sorted(tally.items())))
+ax_a.set_ylabel("amplitude of the dominant mode")
+ax_a.legend(fontsize=8)
+ax_m.set_ylabel("dominant mode m (vortices)")
+ax_m.set_ylim(0, 10)
+ax_m.set_xlabel("t (tau)")
+fig.suptitle("taylor-couette small: the pattern chosen from noise, by seed")
+fig.tight_layout()
+fig.savefig(os.path.join(out, "seeds.png"), dpi=110)
+print(f"figure: {os.path.join(out, 'seeds.png')}")
 PY
