@@ -25,7 +25,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
-from emergentpy import Run
+from emergentpy import Run, exponential_growth
 out, seeds = sys.argv[1], sys.argv[2:]
 length, gap, nu = 100.0, 25.0, 1.156  # the small preset; nu measured at its mid-gap state
 print("| seed | vortices, last quarter (most common, range) | dominant mode m over time | "
@@ -45,14 +45,9 @@ for s in seeds:
     m, amp = mode[:, 0].astype(int), mode[:, 2]
     # History of the dominant mode: each change with the time it happened.
     history = [f"{m[0]}"] + [f"{m[i]} (t={tm[i]:.0f})" for i in range(1, len(m)) if m[i] != m[i - 1]]
-    # Linear growth: ln A against t while A is well above the noise (~0.01) and well below
-    # saturation (~0.45), before its first maximum.
-    peak = int(np.argmax(amp))
-    sel = [i for i in range(peak + 1) if 0.03 <= amp[i] <= 0.15]
-    rate = "n/a"
-    if len(sel) >= 2:
-        slope = np.polyfit(tm[sel], np.log(amp[sel]), 1)[0]
-        rate = f"{slope * gap**2 / nu:.1f} (m = {m[sel[-1]]}, {len(sel)} frames)"
+    # Linear growth while A is well above the noise (~0.01) and well below saturation (~0.45).
+    slope, sel = exponential_growth(tm, amp)
+    rate = "n/a" if slope is None else f"{slope * gap**2 / nu:.1f} (m = {m[sel[-1]]}, {len(sel)} frames)"
     wavelength = 2 * length / m[-1] / gap if m[-1] > 0 else float("nan")
     ax_a.semilogy(tm, amp, "o-", ms=3, label=f"seed {s}: {common} vortices")
     ax_m.step(tm, m, where="post")

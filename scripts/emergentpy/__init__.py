@@ -89,3 +89,16 @@ class Run:
     def segments(self):
         """The trajectory files of this directory: the original and continued runs."""
         return sorted(glob.glob(os.path.join(self.directory, "trajectory*.h5")))
+
+
+def exponential_growth(t, amplitude, lo=0.03, hi=0.15):
+    """Growth rate of an amplitude that grows out of noise and saturates: the slope of
+    ln(amplitude) against t over the samples between lo and hi (well above the noise, well
+    below saturation) up to its first maximum. Returns (rate, indices used), rate None when
+    fewer than two samples qualify."""
+    t, amplitude = np.asarray(t, float), np.asarray(amplitude, float)
+    peak = int(np.argmax(amplitude))
+    used = [i for i in range(peak + 1) if lo <= amplitude[i] <= hi]
+    if len(used) < 2:
+        return None, used
+    return float(np.polyfit(t[used], np.log(amplitude[used]), 1)[0]), used
