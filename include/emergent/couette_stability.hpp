@@ -4,6 +4,8 @@
 // fastest once they can.
 #pragma once
 
+#include <vector>
+
 namespace emergent {
 
 /// The axisymmetric perturbation equations of the viscous flow v_theta = A r + B / r in the
@@ -49,7 +51,9 @@ private:
     double coupling_eigenvalue(double sigma, double wavenumber) const;
 
     double eta_;
-    int n_;  ///< grid points (Chebyshev order + 1)
+    int n_;                     ///< grid points (Chebyshev order + 1)
+    std::vector<double> r_;     ///< Chebyshev points across the gap, r_o first
+    std::vector<double> ddr_;   ///< d/dr on them (n x n, row-major)
 };
 
 }  // namespace emergent

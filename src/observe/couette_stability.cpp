@@ -113,20 +113,22 @@ CouetteStability::CouetteStability(double radius_ratio, int points) : eta_(radiu
         throw std::invalid_argument("CouetteStability: radius ratio " + std::to_string(radius_ratio) +
                                     " is not in (0, 1)");
     if (points < 8) throw std::invalid_argument("CouetteStability: fewer than 8 points across the gap");
+    GapGrid g = gap_grid(eta_ / (1 - eta_), 1 / (1 - eta_), n_);
+    r_ = std::move(g.r);
+    ddr_ = std::move(g.d);
 }
 
 double CouetteStability::coupling_eigenvalue(double sigma, double k) const {
     const int n = n_;
     const double r_i = eta_ / (1 - eta_), r_o = 1 / (1 - eta_);
-    const GapGrid g = gap_grid(r_i, r_o, n);
     // Base flow at Re = 1: Omega_i = 1 / r_i (in units nu / d^2), outer wall at rest.
     const double omega_i = 1 / r_i;
     const double a = -omega_i * r_i * r_i / (r_o * r_o - r_i * r_i);
     const double b = omega_i * r_i * r_i * r_o * r_o / (r_o * r_o - r_i * r_i);
 
-    Matrix dstar = g.d;  // D* = D + 1/r
-    for (int i = 0; i < n; ++i) dstar[i * n + i] += 1 / g.r[i];
-    Matrix l = multiply(g.d, dstar, n);
+    Matrix dstar = ddr_;  // D* = D + 1/r
+    for (int i = 0; i < n; ++i) dstar[i * n + i] += 1 / r_[i];
+    Matrix l = multiply(ddr_, dstar, n);
     for (int i = 0; i < n; ++i) l[i * n + i] -= k * k;
     Matrix shifted = l;  // L - sigma
     for (int i = 0; i < n; ++i) shifted[i * n + i] -= sigma;
@@ -143,8 +145,8 @@ double CouetteStability::coupling_eigenvalue(double sigma, double k) const {
         set_row(shifted, w, unit.data());
         set_row(fourth, w, unit.data());
     }
-    set_row(fourth, 1, &g.d[0]);
-    set_row(fourth, n - 2, &g.d[(n - 1) * n]);
+    set_row(fourth, 1, &ddr_[0]);
+    set_row(fourth, n - 2, &ddr_[(n - 1) * n]);
     const LuSolver solve_v(std::move(shifted), n), solve_u(std::move(fourth), n);
 
     auto apply = [&](const std::vector<double>& u) {
@@ -152,7 +154,7 @@ double CouetteStability::coupling_eigenvalue(double sigma, double k) const {
         for (int i = 0; i < n; ++i) rhs[i] = 2 * a * u[i];
         rhs[0] = rhs[n - 1] = 0;
         const std::vector<double> v = solve_v.solve(rhs);
-        for (int i = 0; i < n; ++i) rhs[i] = 2 * k * k * (a + b / (g.r[i] * g.r[i])) * v[i];
+        for (int i = 0; i < n; ++i) rhs[i] = 2 * k * k * (a + b / (r_[i] * r_[i])) * v[i];
         rhs[0] = rhs[1] = rhs[n - 2] = rhs[n - 1] = 0;
         return solve_u.solve(rhs);
     };
@@ -160,7 +162,7 @@ double CouetteStability::coupling_eigenvalue(double sigma, double k) const {
     // Power iteration from a profile that already meets the boundary conditions.
     std::vector<double> u(n);
     for (int i = 0; i < n; ++i) {
-        const double x = (2 * g.r[i] - r_i - r_o) / (r_o - r_i);
+        const double x = (2 * r_[i] - r_i - r_o) / (r_o - r_i);
         u[i] = (1 - x * x) * (1 - x * x);
     }
     double mu = 0;
