@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "emergent/box.hpp"
+#include "emergent/macros.hpp"
 #include "emergent/particle_store.hpp"
 
 namespace emergent {
@@ -38,9 +39,32 @@ struct WallShape {
 
 /// How a wall moves: a translation velocity plus a rotation rate about the wall's own axis
 /// (for cylinders; the wall velocity at x is then velocity + omega axis x (x - centre)).
+///
+/// Optionally it starts slower: until time `start_until` it moves at `start_factor` times that
+/// speed, then reaches full speed linearly over `ramp`. Which flow pattern forms depends on the
+/// path to the final state (a sudden start and a slow approach can end in different patterns),
+/// so the start is part of the experiment.
 struct WallMotion {
     Vec3 velocity{0, 0, 0};
     double omega = 0;
+    double start_factor = 1, start_until = 0, ramp = 0;
+
+    /// Fraction of full speed at time t.
+    EMERGENT_HD double factor(double t) const {
+        if (t < start_until) return start_factor;
+        if (t < start_until + ramp) return start_factor + (1 - start_factor) * (t - start_until) / ramp;
+        return 1;
+    }
+    /// Integral of factor over [0, t]: the distance (or angle) travelled in units of full speed.
+    EMERGENT_HD double travelled(double t) const {
+        if (t < start_until) return start_factor * t;
+        const double held = start_factor * start_until;
+        if (t < start_until + ramp) {
+            const double s = t - start_until;
+            return held + start_factor * s + 0.5 * (1 - start_factor) * s * s / ramp;
+        }
+        return held + 0.5 * (1 + start_factor) * ramp + (t - start_until - ramp);
+    }
 };
 
 /// What a wall gave to the particles that hit it, summed over hits (this rank's part): the
@@ -61,6 +85,7 @@ struct BoundaryContext {
     /// The region; along its periodic axes a wall reads impact points in the primary image,
     /// so its choices do not depend on which image a rank happens to hold.
     const Box* box = nullptr;
+    double time = 0;  ///< at the start of the drift (moving walls follow their schedule)
 };
 
 /// A rule applied to owned particles right after the drift. It finds each particle that

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "emergent/couette_stability.hpp"
+#include "emergent/error.hpp"
 #include "emergent/flow_analysis.hpp"
 #include "emergent/lattice.hpp"
 #include "emergent/problem.hpp"
@@ -28,6 +29,16 @@ public:
         const double nu = c.real("kinematic_viscosity");
         const double eta = r_i_ / r_o_, d = r_o_ - r_i_;
         reynolds_ = omega_ * r_i_ * d / nu;
+        // A slower start (stepped or ramped): the vortex count a run ends with depends on how
+        // it reached its Re (benchmarks/RESULTS.md, "How many vortices").
+        spin_.omega = omega_;
+        spin_.start_until = c.real("spin_up_time");
+        spin_.ramp = c.real("spin_up_ramp");
+        if (spin_.start_until > 0 || spin_.ramp > 0) {
+            if (!(omega_ > 0))
+                throw InputError(c.scene() + ": spin_up_time / spin_up_ramp need omega > 0");
+            spin_.start_factor = c.real("spin_up_omega") / omega_;
+        }
         // Linear stability of the run's Couette flow: where vortices appear, and which of the
         // axial modes the cylinder's length admits grows fastest at the run's Re (the one a
         // run started from noise is most likely to show).
@@ -77,10 +88,8 @@ public:
 
         const double kT = config_.real("wall_temperature");
         const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));
-        WallMotion spin;
-        spin.omega = omega_;
         inner_ = sim.add_boundary(
-            make_thermal_wall(WallShape::cylinder(2, {0, 0, 0}, r_i_, +1), kT, seed + 31, spin));
+            make_thermal_wall(WallShape::cylinder(2, {0, 0, 0}, r_i_, +1), kT, seed + 31, spin_));
         outer_ = sim.add_boundary(
             make_thermal_wall(WallShape::cylinder(2, {0, 0, 0}, r_o_, -1), kT, seed + 32));
         if (!periodic_ends_) {
@@ -106,10 +115,11 @@ public:
         sim.assign_thermal_velocities(t0 > 0 ? t0 : config_.real("wall_temperature"),
                                       static_cast<std::uint64_t>(config_.integer("seed")));
         if (config_.text("initial_flow") == "couette") {
-            // Circular Couette flow v_theta = A r + B / r, so the run starts where spin-up ends.
-            const double eta = r_i_ / r_o_;
-            const double A = -omega_ * eta * eta / (1 - eta * eta);
-            const double B = omega_ * r_i_ * r_i_ / (1 - eta * eta);
+            // Circular Couette flow v_theta = A r + B / r for the wall's speed at t = 0, so the
+            // run starts where the fluid's own spin-up would end.
+            const double eta = r_i_ / r_o_, omega = omega_ * spin_.factor(0);
+            const double A = -omega * eta * eta / (1 - eta * eta);
+            const double B = omega * r_i_ * r_i_ / (1 - eta * eta);
             ParticleStore& s = sim.particles();
             for (std::size_t i = 0; i < s.n_owned(); ++i) {
                 const Vec3& x = s.position[i];
@@ -138,7 +148,8 @@ public:
     Measures measures(Simulation& sim) override {
         const ThermoSample t = sim.measure();
         const WallExchange in = sim.global_exchange(*inner_), out = sim.global_exchange(*outer_);
-        return {{"revolutions", {omega_ * sim.time() / kTwoPi}},
+        return {{"revolutions", {omega_ * spin_.travelled(sim.time()) / kTwoPi}},
+                {"inner_omega", {omega_ * spin_.factor(sim.time())}},
                 {"fluid_angular_momentum", {t.angular_momentum.z}},
                 {"inner_wall_exchange", {double(in.hits), in.angular_momentum, in.energy}},
                 {"outer_wall_exchange", {double(out.hits), out.angular_momentum, out.energy}},
@@ -209,6 +220,7 @@ public:
 private:
     Config config_;
     double r_i_, r_o_, length_, omega_;
+    WallMotion spin_;  ///< the inner cylinder's rotation, with its start-up
     int wedge_n_;
     bool periodic_ends_;
     double reynolds_ = 0, taylor_ = 0, taylor_critical_ = 0;
@@ -228,6 +240,12 @@ ProblemInfo taylor_couette_info() {
         .real("gap", 25, 2, 1e5, "sigma", "gap d = r_outer - r_inner", true)
         .real("length", 100, 2, 1e6, "sigma", "cylinder length (axis z)", true)
         .real("omega", 0.1, 0, 10, "1/tau", "angular velocity of the inner cylinder")
+        .real("spin_up_time", 0, 0, 1e9, "tau",
+              "time the inner cylinder turns at spin_up_omega before going to omega (0: omega "
+              "from the start)")
+        .real("spin_up_omega", 0, 0, 10, "1/tau", "angular velocity during spin_up_time")
+        .real("spin_up_ramp", 0, 0, 1e9, "tau",
+              "after spin_up_time, time over which the speed rises linearly to omega (0: a step)")
         .real("density", 0.488, 0, 1.2, "sigma^-3",
               "number density of the initial lattice; 0.488 = the paper's N/V: 1.2e5 atoms in "
               "the quadrant of r_i=50, d=25, L=100 (V = 2.454e5), or 2.35e6 in r_i=100, d=40, "

@@ -48,12 +48,13 @@ struct WallGeometry {
         return (shape.side / std::sqrt(dot(r, r))) * r;
     }
 
-    /// Velocity of the wall's surface at x.
-    EMERGENT_HD Vec3 velocity_at(const Vec3& x) const {
-        if (motion.omega == 0) return motion.velocity;
+    /// Velocity of the wall's surface at x at time t.
+    EMERGENT_HD Vec3 velocity_at(const Vec3& x, double t) const {
+        const double f = motion.factor(t);
+        if (motion.omega == 0) return f * motion.velocity;
         Vec3 axis{0, 0, 0};
         axis[shape.axis] = 1;
-        return motion.velocity + motion.omega * cross(axis, radial(x));
+        return f * (motion.velocity + motion.omega * cross(axis, radial(x)));
     }
 
     /// Lever arm of x for angular momentum about the wall's axis through its centre (planes:

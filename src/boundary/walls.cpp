@@ -43,7 +43,7 @@ void bounce(const WallGeometry& wall, ParticleStore& store, const BoundaryContex
             hit = x - wall.gap(x) * wall.normal(x);
         }
         const Vec3 n = wall.normal(hit);
-        const Vec3 u = wall.velocity_at(hit);
+        const Vec3 u = wall.velocity_at(hit, context.time);
         const Vec3 v_new = u + new_velocity(v - u, n, context.box ? context.box->primary_image(hit) : hit, store.id[i], m);
         x = hit + (dt - t) * v_new;
         // A grazing departure from a curved wall may end a hair beyond it: keep it on the wall.

@@ -135,7 +135,7 @@ struct Simulation::Engine {
     }
 
     /// v += kick f/m, x += drift v; then the walls act on the drift.
-    void kick_drift(double kick, double drift) {
+    void kick_drift(double kick, double drift, double at) {
         PhaseTimer timer(times.integrate);
         exec::for_each(exec::Host{}, store.n_owned(),
                        integrate::KickDrift{store.position.data(), store.velocity.data(),
@@ -143,7 +143,7 @@ struct Simulation::Engine {
                                             inverse_mass.data(), kick, drift});
         // Spheres of bodies were moved as free particles above; the bodies now place them.
         if (bodies()) rigid.kick_drift(store, kick, drift);
-        const BoundaryContext context{&mass, drift, step, &box};
+        const BoundaryContext context{&mass, drift, step, &box, at};
         for (auto& rule : boundaries) rule->apply(store, context, boundary_fault);
     }
 
@@ -452,7 +452,7 @@ void Simulation::step(bool sample) {
     const double dt = e.settings.dt;
     switch (e.settings.integrator) {
     case Integrator::VelocityVerlet:
-        e.kick_drift(0.5 * dt, dt);
+        e.kick_drift(0.5 * dt, dt, e.time);
         e.follow_drift();
         e.compute_forces(sample, e.time + dt);
         e.kick(0.5 * dt);
@@ -461,10 +461,10 @@ void Simulation::step(bool sample) {
         // lambda minimises the norm of the leading error term (Omelyan, Mryglod & Folk,
         // Comput. Phys. Commun. 146 (2002) 188, eq. 31).
         constexpr double lambda = 0.1931833275037836;
-        e.kick_drift(lambda * dt, 0.5 * dt);
+        e.kick_drift(lambda * dt, 0.5 * dt, e.time);
         e.follow_drift();
         e.compute_forces(false, e.time + 0.5 * dt);
-        e.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt);
+        e.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt, e.time + 0.5 * dt);
         e.follow_drift();
         e.compute_forces(sample, e.time + dt);
         e.kick(lambda * dt);

@@ -321,3 +321,31 @@ TEST(TaylorCouette, VortexCensusFindsNoVorticesBelowOnset) {
     }
     if (rank == 0) EXPECT_LE(frames_with_vortices, 1);
 }
+
+TEST(TaylorCouette, SpinUpHoldsTheStartSpeedThenTurnsAtOmega) {
+    // omega = 0.4 started at 0.2 for 0.5 tau is, until then, the run at omega = 0.2 itself:
+    // same initial Couette flow, same wall speed (0.4 x 0.5 and 0.2 differ by a power of two,
+    // so they are the same doubles) and so the same trajectory bit for bit. After the step the
+    // faster wall sends the atoms that hit it elsewhere.
+    Scene plain = build_scene(MPI_COMM_WORLD, tiny());
+    Scene stepped = build_scene(MPI_COMM_WORLD,
+                                tiny({"omega=0.4", "spin_up_omega=0.2", "spin_up_time=0.5"}));
+    auto largest_difference = [&] {
+        const auto a = gather_positions(*plain.sim), b = gather_positions(*stepped.sim);
+        double worst = 0;
+        for (const auto& [id, x] : a) {
+            const Vec3 d = x - b.at(id);
+            worst = std::max(worst, std::sqrt(dot(d, d)));
+        }
+        return worst;
+    };
+    for (int k = 0; k < 100; ++k) plain.sim->step(false), stepped.sim->step(false);  // t = 0.5
+    EXPECT_EQ(largest_difference(), 0.0);
+    for (int k = 0; k < 100; ++k) plain.sim->step(false), stepped.sim->step(false);  // t = 1
+    EXPECT_GT(largest_difference(), 1e-3);
+    std::map<std::string, std::vector<double>> m;
+    for (const auto& [name, value] : stepped.problem->measures(*stepped.sim)) m[name] = value;
+    EXPECT_DOUBLE_EQ(m.at("inner_omega")[0], 0.4);
+    // 0.5 tau at 0.2 and 0.5 tau at 0.4.
+    EXPECT_NEAR(m.at("revolutions")[0], (0.2 * 0.5 + 0.4 * 0.5) / 6.283185307179586, 1e-12);
+}
