@@ -33,6 +33,8 @@ enum class Integrator {
 struct RunSettings {
     double dt = 0.005;
     double skin = 0.3;
+    /// Cells per neighbour-list range along each axis (finer cells: fewer candidate pairs).
+    int cell_subdivisions = 1;
     Integrator integrator = Integrator::VelocityVerlet;
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
 };

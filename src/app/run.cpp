@@ -30,15 +30,16 @@ double seconds_since(Clock::time_point t0) {
 /// One line every `interval` wall seconds, printed by rank 0 only.
 class ProgressLine {
 public:
-    ProgressLine(double interval, long long total, bool printer)
-        : interval_(interval), total_(total), printer_(printer), start_(Clock::now()),
-          last_(start_) {}
+    /// `first`: the step the run starts from (a continued run counts its rate from there).
+    ProgressLine(double interval, long long first, long long total, bool printer)
+        : interval_(interval), first_(first), total_(total), printer_(printer),
+          start_(Clock::now()), last_(start_) {}
 
     /// Scenes that turn or shake report "revolutions" or "cycles"; the line shows them.
     void maybe_print(const ThermoSample& t, const char* phase, const Measures& measures) {
         if (!printer_ || interval_ <= 0 || seconds_since(last_) < interval_) return;
         last_ = Clock::now();
-        const double rate = t.step / std::max(1e-9, seconds_since(start_));
+        const double rate = (t.step - first_) / std::max(1e-9, seconds_since(start_));
         const double eta = (total_ - t.step) / std::max(1e-9, rate);
         char periods[48] = "";
         for (const auto& [name, value] : measures)
@@ -51,7 +52,7 @@ public:
 
 private:
     double interval_;
-    long long total_;
+    long long first_, total_;
     bool printer_;
     Clock::time_point start_, last_;
 };
@@ -83,6 +84,7 @@ RunSettings run_settings(const Config& cfg) {
     RunSettings settings;
     settings.dt = cfg.real("dt");
     settings.skin = cfg.real("skin");
+    settings.cell_subdivisions = static_cast<int>(cfg.integer("cell_subdivisions"));
     settings.integrator =
         cfg.text("integrator") == "omelyan" ? Integrator::Omelyan : Integrator::VelocityVerlet;
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
@@ -112,7 +114,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
     const long long end = n_eq + cfg.integer("steps");
     const long long every = cfg.integer("sample_every");
     const long long checkpoint_every = cfg.integer("checkpoint_every");
-    ProgressLine progress(cfg.real("progress_interval"), end, sim.rank() == 0);
+    ProgressLine progress(cfg.real("progress_interval"), sim.step_index(), end, sim.rank() == 0);
     auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
     if (sim.step_index() == n_eq && series.empty()) series.push_back(sim.measure());
     RunGuard guard(cfg, sim);

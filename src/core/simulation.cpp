@@ -72,7 +72,8 @@ struct Simulation::Engine {
         for (const auto& term : forces) cutoff = std::max(cutoff, term->cutoff());
         list = NeighbourList(cutoff, settings.skin);
         grid->require_width(ghost_width());
-        cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff());
+        cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff(),
+                    settings.cell_subdivisions);
         if (bodies() && thermostat)
             throw InputError("a thermostat with rigid bodies is not supported yet");
         if (bodies() && !wall_layers.empty())

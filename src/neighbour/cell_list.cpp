@@ -7,14 +7,18 @@
 
 namespace emergent {
 
-void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double min_cell) {
+void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions) {
     lo_ = lo;
     hi_ = hi;
+    const double min_cell = range / std::max(1, subdivisions);
     for (int d = 0; d < 3; ++d) {
         const double len = hi[d] - lo[d];
         const int inner = std::max(1, static_cast<int>(std::floor(len / min_cell)));
         const double width = len / inner;
-        const int layers = static_cast<int>(std::ceil(shell / width - 1e-12));
+        // A small domain may give cells wider than asked: then fewer are needed to span range.
+        reach_[d] = std::max(1, static_cast<int>(std::ceil(range / width - 1e-12)));
+        // The shell must hold every cell the search reaches from an inner cell.
+        const int layers = std::max(reach_[d], static_cast<int>(std::ceil(shell / width - 1e-12)));
         n_[d] = inner + 2 * layers;
         origin_[d] = lo[d] - layers * width;
         first_inner_[d] = layers;
@@ -31,7 +35,11 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double min_ce
                                   origin_[2] + (z + 0.5) / inverse_width_[2]};
                 bool in = true;
                 for (int d = 0; d < 3; ++d) in = in && centre[d] > lo[d] && centre[d] < hi[d];
-                inner_[(z * n_[1] + y) * n_[0] + x] = in;
+                const int c[3] = {x, y, z};
+                bool deep = in;
+                for (int d = 0; d < 3; ++d)
+                    deep = deep && c[d] - reach_[d] >= first_inner_[d] && c[d] + reach_[d] < end_inner_[d];
+                inner_[(z * n_[1] + y) * n_[0] + x] = deep ? 2 : in ? 1 : 0;
             }
 }
 

@@ -12,11 +12,13 @@ namespace emergent {
 
 /// Regular cells over [lo - shell, hi + shell) whose faces fall on the domain faces, so every
 /// cell is either inside the domain (holds owned particles only) or in the ghost shell (holds
-/// ghosts only). Cells are at least `min_cell` wide: a pair closer than that lies in the same
-/// or adjacent cells.
+/// ghosts only). Cells are at least range / subdivisions wide, so a pair closer than `range`
+/// lies at most reach() cells apart along each axis (reach <= subdivisions). Finer cells
+/// search a volume closer to the sphere of the range: 2 subdivisions test 125 cells of
+/// (range/2)^3 instead of 27 of range^3, 42 % fewer candidates, for more cells to walk.
 class CellList {
 public:
-    void setup(const Vec3& lo, const Vec3& hi, double shell, double min_cell);
+    void setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions = 1);
 
     /// Linear index of the cell holding x (positions just outside the grid are clamped).
     int cell_of(const Vec3& x) const {
@@ -47,8 +49,12 @@ public:
     void bin(const Vec3* x, std::size_t n);
 
     Int3 shape() const { return {n_[0], n_[1], n_[2]}; }
+    /// Cells to search on each side along each axis for pairs within the range.
+    Int3 reach() const { return {reach_[0], reach_[1], reach_[2]}; }
     int n_cells() const { return n_[0] * n_[1] * n_[2]; }
     bool is_inner(int cell) const { return inner_[cell] != 0; }
+    /// An inner cell whose whole search stencil (reach cells each way) is inner.
+    bool is_deep(int cell) const { return inner_[cell] == 2; }
     const std::uint32_t* members_begin(int cell) const { return &members_[start_[cell]]; }
     const std::uint32_t* members_end(int cell) const { return &members_[start_[cell + 1]]; }
     /// Slots of cell c are [first(c), first(c + 1)) in members and binned positions.
@@ -64,7 +70,8 @@ private:
     double inverse_width_[3] = {1, 1, 1};
     int first_inner_[3] = {0, 0, 0}, end_inner_[3] = {1, 1, 1};  ///< inner cells per axis
     int n_[3] = {1, 1, 1};
-    std::vector<char> inner_;
+    int reach_[3] = {1, 1, 1};
+    std::vector<char> inner_;  ///< per cell: 0 ghost, 1 inner, 2 inner with its stencil inner
     std::vector<std::uint32_t> start_, members_, cell_;
     std::vector<Vec3> binned_;
 };

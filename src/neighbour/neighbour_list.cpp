@@ -20,15 +20,15 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
     const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
     const std::int64_t* body = store.has_rigid_fields() ? store.body.data() : nullptr;
-    const Int3 shape = cells.shape();
+    const Int3 shape = cells.shape(), reach = cells.reach();
     offset_.assign(n_owned + 1, 0);
     neighbour_.clear();
     for (std::size_t i = 0; i < n_owned; ++i) {
         const int c = cells.cell_of(x[i]);
         const int cx = c % shape.x, cy = (c / shape.x) % shape.y, cz = c / (shape.x * shape.y);
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
+        for (int dz = -reach.z; dz <= reach.z; ++dz)
+            for (int dy = -reach.y; dy <= reach.y; ++dy)
+                for (int dx = -reach.x; dx <= reach.x; ++dx) {
                     const int ax = cx + dx, ay = cy + dy, az = cz + dz;
                     if (ax < 0 || ay < 0 || az < 0 || ax >= shape.x || ay >= shape.y || az >= shape.z)
                         continue;
@@ -67,27 +67,49 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     offset_.assign(n_owned + 1, 0);
     const std::uint32_t* member = cells.members();
     const Vec3* xb = cells.binned_positions();
-    // Stencil: the 26 adjacent cells as offsets of the linear index. Inner cells always have
-    // all of them, since the grid carries at least one ghost layer.
-    int stencil[26], n_stencil = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-                if (dx || dy || dz) stencil[n_stencil++] = (dz * shape.y + dy) * shape.x + dx;
+    // Stencil: the cells within reach as offsets of the linear index, in increasing order, so
+    // that neighbouring cells of one row (consecutive indices, consecutive slots) merge into
+    // one range below. Inner cells always have all of them: the grid's ghost shell is at least
+    // `reach` cells thick.
+    const Int3 reach = cells.reach();
+    std::vector<int> stencil;
+    for (int dz = -reach.z; dz <= reach.z; ++dz)
+        for (int dy = -reach.y; dy <= reach.y; ++dy)
+            for (int dx = -reach.x; dx <= reach.x; ++dx)
+                if (dx || dy || dz) stencil.push_back((dz * shape.y + dy) * shape.x + dx);
+    // Away from the ghost shell every stencil cell is inner, so the search is the rows of
+    // cells after c, whole (their first cell's offset), and the rest of c's own row.
+    std::vector<int> later_rows;
+    for (int dz = 0; dz <= reach.z; ++dz)
+        for (int dy = dz == 0 ? 1 : -reach.y; dy <= reach.y; ++dy)
+            later_rows.push_back((dz * shape.y + dy) * shape.x - reach.x);
+    const int row_cells = 2 * reach.x + 1;
+    std::vector<std::uint32_t> range_begin(stencil.size() + 1), range_end(stencil.size() + 1);
     std::size_t count = 0;
     for (int c = 0; c < cells.n_cells(); ++c) {
-        if (!cells.is_inner(c)) continue;
+        if (!cells.is_inner(c) || cells.first(c) == cells.first(c + 1)) continue;
         // Inner cells before c hold only owned j < i; inner cells after c and ghost cells hold
-        // only j > i. Collect the slot ranges to search once per cell.
-        std::uint32_t range_begin[26], range_end[26], bound = 0;
+        // only j > i. Collect the slot ranges to search once per cell, merging adjacent ones.
+        std::uint32_t bound = 0;
         int n_ranges = 0;
-        for (int s = 0; s < 26; ++s) {
-            const int c2 = c + stencil[s];
-            if (c2 < c && cells.is_inner(c2)) continue;
-            range_begin[n_ranges] = cells.first(c2);
-            range_end[n_ranges] = cells.first(c2 + 1);
-            bound += range_end[n_ranges] - range_begin[n_ranges];
-            ++n_ranges;
+        auto add_range = [&](std::uint32_t b, std::uint32_t e) {
+            if (b == e) return;
+            bound += e - b;
+            if (n_ranges > 0 && range_end[n_ranges - 1] == b)
+                range_end[n_ranges - 1] = e;
+            else
+                range_begin[n_ranges] = b, range_end[n_ranges] = e, ++n_ranges;
+        };
+        if (cells.is_deep(c)) {
+            add_range(cells.first(c + 1), cells.first(c + 1 + reach.x));
+            for (const int row : later_rows)
+                add_range(cells.first(c + row), cells.first(c + row + row_cells));
+        } else {
+            for (const int offset : stencil) {
+                const int c2 = c + offset;
+                if (c2 < c && cells.is_inner(c2)) continue;
+                add_range(cells.first(c2), cells.first(c2 + 1));
+            }
         }
         const std::uint32_t own_end = cells.first(c + 1);
         bound += own_end - cells.first(c);

@@ -15,7 +15,12 @@
 
 using namespace emergent;
 
-TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
+namespace {
+
+/// Builds the list of 600 random points in a periodic box with cells of 1/subdivisions of the
+/// list range (the cell search, or the general one) and checks it against brute force.
+void check_list_against_brute_force(int subdivisions, bool general) {
+    SCOPED_TRACE("subdivisions " + std::to_string(subdivisions) + (general ? ", general" : ""));
     Box box;
     box.hi = {6.0, 7.5, 9.0};  // every edge > 2 (cutoff + skin): minimum image is unique
     decomp::RankGrid grid(MPI_COMM_SELF, box);
@@ -29,14 +34,15 @@ TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
     NeighbourList list(1.12, 0.38);
     const double rl = list.list_cutoff();
     CellList cells;
-    cells.setup(grid.lo(), grid.hi(), rl, rl);
+    cells.setup(grid.lo(), grid.hi(), rl, rl, subdivisions);
+    EXPECT_EQ(cells.reach().x, subdivisions);
     std::vector<std::uint32_t> order;
     cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
     store.permute_owned(order);
     decomp::HaloExchange halo;
     halo.build(store, grid, rl, kPosition | kId);
     cells.bin(store.position.data(), store.size());
-    list.build(store, cells);
+    list.build(store, cells, general);
 
     // An owned–owned pair is listed once; an owned–ghost pair (here: across the periodic
     // boundary) is listed under each owned member, each taking half the pair's energy. So every
@@ -66,6 +72,13 @@ TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
         ASSERT_NE(it, coverage.end()) << "missed pair " << pair.first << " " << pair.second;
         EXPECT_EQ(it->second, 2) << pair.first << " " << pair.second;
     }
+}
+
+}  // namespace
+
+TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
+    for (int subdivisions : {1, 2, 3})
+        for (bool general : {false, true}) check_list_against_brute_force(subdivisions, general);
 }
 
 TEST(NeighbourList, RebuildIsRequestedOnlyBeyondHalfTheSkin) {
