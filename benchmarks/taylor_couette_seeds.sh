@@ -8,7 +8,9 @@
 # amplitude, the history of the dominant mode, and the growth rate of the rolls while they are
 # small (compare with build/bin/emergent-couette-stability --reynolds 108); OUT_DIR/seeds.png
 # draws amplitude and mode against time. Runs already complete in OUT_DIR are reused.
-# usage: benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS]
+# Further arguments go to the scene, e.g. a stepped start (hold Re where 4 vortices grow
+# fastest, then step up): --set spin_up_omega=0.07 --set spin_up_time=750
+# usage: benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS] [SCENE_ARGS...]
 #        (defaults /tmp/emergent_tc_seeds, "1 2 3 4 5 6", 80000 = 400 tau, 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,8 +18,9 @@ out=${1:-/tmp/emergent_tc_seeds}
 seeds=${2:-"1 2 3 4 5 6"}
 steps=${3:-80000}
 ranks=${4:-2}
+shift $(( $# < 4 ? $# : 4 ))
 source benchmarks/common.sh
-scene_sweep "$out" "$ranks" "$steps" seed $seeds -- taylor-couette --preset small
+scene_sweep "$out" "$ranks" "$steps" seed $seeds -- taylor-couette --preset small "$@"
 /usr/bin/python3 - "$out" $seeds <<'PY'
 import collections, os, sys
 sys.path.insert(0, "scripts")
