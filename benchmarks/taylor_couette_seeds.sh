@@ -7,10 +7,14 @@
 # count), the dominant axial cosine mode m of v_r at mid-gap (wavelength 2 L / m) and its
 # amplitude, the history of the dominant mode, and the growth rate of the rolls while they are
 # small (compare with build/bin/emergent-couette-stability --reynolds 108); OUT_DIR/seeds.png
-# draws amplitude and mode against time. Runs already complete in OUT_DIR are reused.
+# draws amplitude and mode against time, OUT_DIR/modes.png the 4- and 5-vortex modes alone. Runs already complete in OUT_DIR are reused.
 # Further arguments go to the scene, e.g. a stepped start (hold Re where 4 vortices grow
-# fastest, then step up): --set spin_up_omega=0.07 --set spin_up_time=750
-# usage: benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS] [SCENE_ARGS...]
+# fastest, then step up): --set spin_up_omega=0.07 --set spin_up_time=750. Growth rates are
+# also given for the 4- and 5-vortex modes alone (their cosine amplitudes), in units of
+# nu/d^2 with nu from the environment variable NU (default 1.156, the omega = 0.1 mid-gap
+# state; the omega = 0.07 hold: 1.07; one nu for the whole run, so a rate fitted after a
+# step is in the other state's units).
+# usage: [NU=nu] benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS] [SCENE_ARGS...]
 #        (defaults /tmp/emergent_tc_seeds, "1 2 3 4 5 6", 80000 = 400 tau, 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -28,14 +32,17 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
-from emergentpy import Run, exponential_growth
+from emergentpy import Run, cosine_modes, exponential_growth
 out, seeds = sys.argv[1], sys.argv[2:]
-length, gap, nu = 100.0, 25.0, 1.156  # the small preset; nu measured at its mid-gap state
+length, gap = 100.0, 25.0  # the small preset
+nu = float(os.environ.get("NU", "1.156"))  # measured at the mid-gap state of the growth
+print(f"(growth rates in nu/d^2 with nu = {nu})\n")
 print("| seed | vortices, last quarter (most common, range) | dominant mode m over time | "
-      "wavelength / d (end) | amplitude (end) | growth rate, A in 0.03-0.15 (nu/d^2) |")
-print("|---|---|---|---|---|---|")
+      "wavelength / d (end) | amplitude (end) | growth rate, A in 0.03-0.15 | m = 4 alone | m = 5 alone |")
+print("|---|---|---|---|---|---|---|---|")
 tally = collections.Counter()
 fig, (ax_a, ax_m) = plt.subplots(2, 1, figsize=(7, 6), sharex=True)
+fig_modes, ax_modes = plt.subplots(figsize=(7, 4))
 for s in seeds:
     run = Run(os.path.join(out, f"seed_{s}"))
     t, count = run.observable("vortex_count")
@@ -51,11 +58,18 @@ for s in seeds:
     # Linear growth while A is well above the noise (~0.01) and well below saturation (~0.45).
     slope, sel = exponential_growth(tm, amp)
     rate = "n/a" if slope is None else f"{slope * gap**2 / nu:.1f} (m = {m[sel[-1]]}, {len(sel)} frames)"
+    tv, profile = run.observable("radial_velocity_midgap")
+    alone = []
+    for k, a in cosine_modes(profile.reshape(len(tv), -1), (4, 5)).items():
+        line = "-" if k == 4 else ":"
+        ax_modes.semilogy(tv, a, line, color=f"C{seeds.index(s)}", label=f"seed {s}, m = {k}")
+        r, used = exponential_growth(tv, a)
+        alone.append("n/a" if r is None else f"{r * gap**2 / nu:.2f} (t {tv[used[0]]:.0f}-{tv[used[-1]]:.0f})")
     wavelength = 2 * length / m[-1] / gap if m[-1] > 0 else float("nan")
     ax_a.semilogy(tm, amp, "o-", ms=3, label=f"seed {s}: {common} vortices")
     ax_m.step(tm, m, where="post")
     print(f"| {s} | {common} ({last.min()}-{last.max()}) | {' -> '.join(history)} | "
-          f"{wavelength:.2f} | {amp[-1]:.3f} | {rate} |")
+          f"{wavelength:.2f} | {amp[-1]:.3f} | {rate} | {alone[0]} | {alone[1]} |")
 print("\nvortex counts over seeds: " + ", ".join(f"{k}: {v}" for k, v in sorted(tally.items())))
 ax_a.set_ylabel("amplitude of the dominant mode")
 ax_a.legend(fontsize=8)
@@ -65,5 +79,11 @@ ax_m.set_xlabel("t (tau)")
 fig.suptitle("taylor-couette small: the pattern chosen from noise, by seed")
 fig.tight_layout()
 fig.savefig(os.path.join(out, "seeds.png"), dpi=110)
-print(f"figure: {os.path.join(out, 'seeds.png')}")
+ax_modes.set_xlabel("t (tau)")
+ax_modes.set_ylabel("amplitude of the mode alone")
+ax_modes.set_title("4 vortices (solid) against 5 (dotted), by seed")
+ax_modes.legend(fontsize=7, ncol=2)
+fig_modes.tight_layout()
+fig_modes.savefig(os.path.join(out, "modes.png"), dpi=110)
+print(f"figures: {os.path.join(out, 'seeds.png')}, {os.path.join(out, 'modes.png')}")
 PY

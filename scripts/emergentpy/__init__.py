@@ -91,6 +91,16 @@ class Run:
         return sorted(glob.glob(os.path.join(self.directory, "trajectory*.h5")))
 
 
+def cosine_modes(profiles, modes):
+    """Amplitudes of the axial modes cos(m pi z / L) in profiles sampled at the centres of n
+    equal cells (one profile per row, as radial_velocity_midgap with closed ends): the same
+    normalisation as the scene's dominant mode. Returns {m: amplitude per row}."""
+    profiles = np.atleast_2d(np.asarray(profiles, float))
+    n = profiles.shape[1]
+    j = np.arange(n)
+    return {m: np.abs(profiles @ np.cos(np.pi * m * (j + 0.5) / n)) * 2 / n for m in modes}
+
+
 def exponential_growth(t, amplitude, lo=0.03, hi=0.15):
     """Growth rate of an amplitude that grows out of noise and saturates: the slope of
     ln(amplitude) against t over the samples between lo and hi (well above the noise, well

@@ -36,7 +36,8 @@ Schema run_schema() {
         .real("skin", 0.3, 0, 5, "sigma", "neighbour-list skin beyond the largest cutoff", true)
         .integer("cell_subdivisions", 1, 1, 3, "1",
                  "cells per neighbour-list range (cutoff + skin) along each axis for the list "
-                 "search: 2 tests 42 % fewer candidate pairs than 1 (benchmarks/RESULTS.md)")
+                 "search: 2 tests 42 % fewer candidate pairs than 1 but ran 30 % slower for WCA "
+                 "and no faster for LJ at cutoff 2.5 (benchmarks/RESULTS.md)")
         .choice("integrator", "verlet", {"verlet", "omelyan"},
                 "time-step splitting: verlet (velocity Verlet, one force evaluation per step) or "
                 "omelyan (Omelyan-Mryglod-Folk minimum-error scheme, two evaluations per step, "

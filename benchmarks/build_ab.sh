@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Two builds of emergent side by side on the same state: the scene runs SETTLE steps once with
+# build A (the older one: a newer build reads its checkpoint, not always the other way round)
+# and leaves a checkpoint; A and B then continue it for TIMED steps in turn, REPEATS
+# rounds, so the machine's load drifts alike over both. Reports each build's median rate and
+# the median over rounds of the ratio B / A (the figure to quote: noise in one round cancels).
+# usage: benchmarks/build_ab.sh RANKS SETTLE TIMED REPEATS EXE_A EXE_B SCENE [--set key=value]...
+set -euo pipefail
+cd "$(dirname "$0")/.."
+ranks=$1 settle=$2 timed_steps=$3 repeats=$4 exe_a=$5 exe_b=$6 scene=$7
+shift 7
+. benchmarks/common.sh
+mpirun --oversubscribe -np "$ranks" "$exe_a" run "$scene" "$@" --set steps="$settle" \
+  --set equilibration_steps=0 --set checkpoint_every="$settle" --set output.every=0 \
+  --set progress_interval=0 -o "$work/settle" >/dev/null
+rate() {
+  mpirun --oversubscribe -np "$ranks" "$1" run --restart "$work/settle/checkpoint.h5" \
+    --set steps=$((settle + timed_steps)) --set checkpoint_every=0 --set progress_interval=0 \
+    --summary-json "$work/s.json" >/dev/null
+  grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$2"
+  grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}'
+}
+for r in $(seq "$repeats"); do
+  a=$(rate "$exe_a" a) b=$(rate "$exe_b" b)
+  echo "$a" >>"$work/a"; echo "$b" >>"$work/b"
+  awk -v a="$a" -v b="$b" 'BEGIN {print b / a}' >>"$work/ratio"
+done
+printf '| build (%d ranks, %d steps) | particle-steps/s (median of %d) | B/particle |\n|---|---|---|\n' \
+  "$ranks" "$timed_steps" "$repeats"
+printf '| A %s | %.3g | %.0f |\n' "$exe_a" "$(median <"$work/a")" "$(median <"$work/ma")"
+printf '| B %s | %.3g | %.0f |\n' "$exe_b" "$(median <"$work/b")" "$(median <"$work/mb")"
+printf '\nB / A: median %.3f over rounds (min %.3f, max %.3f)\n' "$(median <"$work/ratio")" \
+  "$(sort -g "$work/ratio" | head -1)" "$(sort -g "$work/ratio" | tail -1)"
