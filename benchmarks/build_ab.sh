@@ -10,15 +10,13 @@ cd "$(dirname "$0")/.."
 ranks=$1 settle=$2 timed_steps=$3 repeats=$4 exe_a=$5 exe_b=$6 scene=$7
 shift 7
 . benchmarks/common.sh
-mpirun --oversubscribe -np "$ranks" "$exe_a" run "$scene" "$@" --set steps="$settle" \
-  --set equilibration_steps=0 --set checkpoint_every="$settle" --set output.every=0 \
-  --set progress_interval=0 -o "$work/settle" >/dev/null
+settle_checkpoint "$exe_a" "$ranks" "$settle" "$scene" "$@"
 rate() {
   mpirun --oversubscribe -np "$ranks" "$1" run --restart "$work/settle/checkpoint.h5" \
     --set steps=$((settle + timed_steps)) --set checkpoint_every=0 --set progress_interval=0 \
     --summary-json "$work/s.json" >/dev/null
-  grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$2"
-  grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}'
+  summary_value "$work/s.json" bytes_per_particle >>"$work/m$2"
+  summary_value "$work/s.json" atom_steps_per_second
 }
 for r in $(seq "$repeats"); do
   a=$(rate "$exe_a" a) b=$(rate "$exe_b" b)

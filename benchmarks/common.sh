@@ -21,3 +21,16 @@ scene_sweep() {
       --set progress_interval=0 -o "$out/${key}_$v" >/dev/null
   done
 }
+
+# settle_checkpoint EXE RANKS STEPS SCENE_ARGS...: runs the scene STEPS steps once into
+# $work/settle and leaves $work/settle/checkpoint.h5, the state timed runs continue from.
+settle_checkpoint() {
+  local exe_=$1 ranks_=$2 steps_=$3
+  shift 3
+  mpirun --oversubscribe -np "$ranks_" "$exe_" run "$@" --set steps="$steps_" \
+    --set equilibration_steps=0 --set checkpoint_every="$steps_" --set output.every=0 \
+    --set progress_interval=0 -o "$work/settle" >/dev/null
+}
+
+# summary_value FILE KEY: a number from a run's summary JSON.
+summary_value() { grep -o "\"$2\": [0-9.e+-]*" "$1" | awk '{print $2}'; }

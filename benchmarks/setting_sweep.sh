@@ -10,18 +10,16 @@ cd "$(dirname "$0")/.."
 ranks=$1 settle=$2 timed_steps=$3 repeats=$4 key=$5 values=$6 scene=$7
 shift 7
 . benchmarks/common.sh
-mpirun --oversubscribe -np "$ranks" "$exe" run "$scene" "$@" --set steps="$settle" \
-  --set equilibration_steps=0 --set checkpoint_every="$settle" --set output.every=0 \
-  --set progress_interval=0 -o "$work/settle" >/dev/null
-rebuilds0=$(grep -o '"neighbour_rebuilds": [0-9]*' "$work/settle/summary.json" | awk '{print $2}')
+settle_checkpoint "$exe" "$ranks" "$settle" "$scene" "$@"
+rebuilds0=$(summary_value "$work/settle/summary.json" neighbour_rebuilds)
 for r in $(seq "$repeats"); do
   for v in $values; do
     mpirun --oversubscribe -np "$ranks" "$exe" run --restart "$work/settle/checkpoint.h5" \
       --set steps=$((settle + timed_steps)) --set checkpoint_every=0 --set progress_interval=0 \
       --set "$key=$v" --summary-json "$work/s.json" >/dev/null
-    grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/r$v"
-    grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$v"
-    grep -o '"neighbour_rebuilds": [0-9]*' "$work/s.json" | awk -v r0="$rebuilds0" '{print $2 - r0}' >>"$work/b$v"
+    summary_value "$work/s.json" atom_steps_per_second >>"$work/r$v"
+    summary_value "$work/s.json" bytes_per_particle >>"$work/m$v"
+    echo $(( $(summary_value "$work/s.json" neighbour_rebuilds) - rebuilds0 )) >>"$work/b$v"
   done
 done
 printf '| %s (%d ranks) | particle-steps/s | list builds in %d steps | B/particle |\n|---|---|---|---|\n' \

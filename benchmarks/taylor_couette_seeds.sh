@@ -7,7 +7,8 @@
 # count), the dominant axial cosine mode m of v_r at mid-gap (wavelength 2 L / m) and its
 # amplitude, the history of the dominant mode, and the growth rate of the rolls while they are
 # small (compare with build/bin/emergent-couette-stability --reynolds 108); OUT_DIR/seeds.png
-# draws amplitude and mode against time, OUT_DIR/modes.png the 4- and 5-vortex modes alone. Runs already complete in OUT_DIR are reused.
+# draws amplitude and mode against time, OUT_DIR/modes.png the 4- and 5-vortex modes alone.
+# Runs already complete in OUT_DIR are reused.
 # Further arguments go to the scene, e.g. a stepped start (hold Re where 4 vortices grow
 # fastest, then step up): --set spin_up_omega=0.07 --set spin_up_time=750. Growth rates are
 # also given for the 4- and 5-vortex modes alone (their cosine amplitudes), in units of
