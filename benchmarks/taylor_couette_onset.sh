@@ -19,7 +19,8 @@ omegas=${2:-"0.06 0.08 0.1"}
 steps=${3:-100000}
 ranks=${4:-2}
 source benchmarks/common.sh
-scene_sweep "$out" "$ranks" "$steps" omega $omegas -- taylor-couette --preset small
+# Each omega from the start: the preset's stepped start (a hold at 0.07) is switched off.
+scene_sweep "$out" "$ranks" "$steps" omega $omegas -- taylor-couette --preset small --set spin_up_time=0
 /usr/bin/python3 - "$out" $omegas <<'PY'
 import os, sys
 sys.path.insert(0, "scripts")

@@ -1,27 +1,28 @@
 #!/usr/bin/env bash
-# How many Taylor vortices the `small` system settles to: the same run (omega 0.1, Re ~108)
-# from several seeds. With L = 4 d and elastic end caps, 4 vortices (lambda = 2 d, the linear-
-# stability wavelength, the paper's count) and 5 (lambda = 1.6 d) both fit; which one a run
-# picks is decided while the rolls grow out of noise, so only a count over seeds says how often
-# each appears. For each seed: the vortex census over the last quarter of the run (most common
-# count), the dominant axial cosine mode m of v_r at mid-gap (wavelength 2 L / m) and its
-# amplitude, the history of the dominant mode, and the growth rate of the rolls while they are
-# small (compare with build/bin/emergent-couette-stability --reynolds 108); OUT_DIR/seeds.png
-# draws amplitude and mode against time, OUT_DIR/modes.png the 4- and 5-vortex modes alone.
+# How many Taylor vortices the `small` system settles to: the same run from several seeds.
+# With L = 4 d and elastic end caps, 4 vortices (lambda = 2 d, the linear-stability wavelength,
+# the paper's count) and 5 (lambda = 1.6 d) both fit; which one a run picks is decided while the
+# rolls grow out of noise, so only a count over seeds says how often each appears. For each
+# seed: the vortex census over the last quarter of the run (most common count), the dominant
+# axial cosine mode m of v_r at mid-gap (wavelength 2 L / m) and its amplitude, the history of
+# the dominant mode, and the growth rate of the rolls while they are small (compare with
+# build/bin/emergent-couette-stability --reynolds RE); OUT_DIR/seeds.png draws amplitude and
+# mode against time, OUT_DIR/modes.png the 4- and 5-vortex modes alone.
 # Runs already complete in OUT_DIR are reused.
-# Further arguments go to the scene, e.g. a stepped start (hold Re where 4 vortices grow
-# fastest, then step up): --set spin_up_omega=0.07 --set spin_up_time=750. Growth rates are
-# also given for the 4- and 5-vortex modes alone (their cosine amplitudes), in units of
-# nu/d^2 with nu from the environment variable NU (default 1.156, the omega = 0.1 mid-gap
-# state; the omega = 0.07 hold: 1.07; one nu for the whole run, so a rate fitted after a
-# step is in the other state's units).
+# The preset's own schedule is a stepped start (held at omega 0.07, Re ~82, for 1750 tau, then
+# 0.1 for 350 tau: STEPS 420000); further arguments go to the scene, e.g. the sudden start at 0.1:
+# --set spin_up_time=0 (with STEPS 80000-150000 and NU=1.156). Growth rates are also given for
+# the 4- and 5-vortex modes alone (their cosine amplitudes), in units of nu/d^2 with nu from the
+# environment variable NU (default 1.07, the mid-gap state of the omega = 0.07 hold, where the
+# stepped start's rolls grow; the omega = 0.1 state: 1.156; one nu for the whole run, so a rate
+# fitted after a step is in the other state's units).
 # usage: [NU=nu] benchmarks/taylor_couette_seeds.sh [OUT_DIR] [SEEDS] [STEPS] [RANKS] [SCENE_ARGS...]
-#        (defaults /tmp/emergent_tc_seeds, "1 2 3 4 5 6", 80000 = 400 tau, 2)
+#        (defaults /tmp/emergent_tc_seeds, "1 2 3 4 5 6", 420000 = 2100 tau (the preset), 2)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-/tmp/emergent_tc_seeds}
 seeds=${2:-"1 2 3 4 5 6"}
-steps=${3:-80000}
+steps=${3:-420000}
 ranks=${4:-2}
 shift $(( $# < 4 ? $# : 4 ))
 source benchmarks/common.sh
@@ -36,7 +37,7 @@ import numpy as np
 from emergentpy import Run, cosine_modes, exponential_growth
 out, seeds = sys.argv[1], sys.argv[2:]
 length, gap = 100.0, 25.0  # the small preset
-nu = float(os.environ.get("NU", "1.156"))  # measured at the mid-gap state of the growth
+nu = float(os.environ.get("NU", "1.07"))  # measured at the mid-gap state of the growth
 print(f"(growth rates in nu/d^2 with nu = {nu})\n")
 print("| seed | vortices, last quarter (most common, range) | dominant mode m over time | "
       "wavelength / d (end) | amplitude (end) | growth rate, A in 0.03-0.15 | m = 4 alone | m = 5 alone |")
