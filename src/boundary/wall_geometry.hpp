@@ -95,4 +95,42 @@ struct WallGeometry {
     }
 };
 
+/// Calls cross(i) for each particle i in [0, n) beyond the wall (not on its fluid side). Every
+/// particle is tested at every step and few cross, so the test is written out per wall kind
+/// and axis with the wall's numbers in registers; it is
+/// WallGeometry::on_fluid_side's test (host loop; tested against it for every kind, axis, side).
+template <class Cross>
+void for_each_crossing(const WallShape& shape, const Vec3* x, std::size_t n, Cross&& cross) {
+    const double side = shape.side;
+    auto scan = [&](auto beyond) {
+        for (std::size_t i = 0; i < n; ++i)
+            if (beyond(x[i])) cross(i);
+    };
+    auto plane = [&](auto coordinate) {
+        const double at = shape.position;
+        scan([=](const Vec3& p) { return !(side * (coordinate(p) - at) >= 0); });
+    };
+    // Radial distance squared from the axis, summed in the order dot() sums it.
+    auto cylinder = [&](auto radial_sq) {
+        const Vec3 c = shape.centre;
+        const double r2 = shape.radius * shape.radius;
+        if (shape.side > 0)
+            scan([=](const Vec3& p) { return !(radial_sq(p - c) >= r2); });
+        else
+            scan([=](const Vec3& p) { return !(radial_sq(p - c) <= r2); });
+    };
+    const bool is_plane = shape.kind == WallShape::Kind::Plane;
+    switch (shape.axis) {
+    case 0:
+        if (is_plane) return plane([](const Vec3& p) { return p.x; });
+        return cylinder([](const Vec3& r) { return 0.0 * 0.0 + r.y * r.y + r.z * r.z; });
+    case 1:
+        if (is_plane) return plane([](const Vec3& p) { return p.y; });
+        return cylinder([](const Vec3& r) { return r.x * r.x + 0.0 * 0.0 + r.z * r.z; });
+    default:
+        if (is_plane) return plane([](const Vec3& p) { return p.z; });
+        return cylinder([](const Vec3& r) { return r.x * r.x + r.y * r.y + 0.0 * 0.0; });
+    }
+}
+
 }  // namespace emergent::boundary

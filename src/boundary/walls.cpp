@@ -11,6 +11,7 @@ namespace emergent {
 
 namespace {
 
+using boundary::for_each_crossing;
 using boundary::WallGeometry;
 
 /// x on a grid of 2^-30 (about 1e-9 sigma): the coin still flips with any visible change of
@@ -28,9 +29,8 @@ void bounce(const WallGeometry& wall, ParticleStore& store, const BoundaryContex
             const NewVelocity& new_velocity, WallExchange& exchange, std::string& fault,
             const std::string& name) {
     const double dt = context.dt;
-    for (std::size_t i = 0; i < store.n_owned(); ++i) {
+    for_each_crossing(wall.shape, store.position.data(), store.n_owned(), [&](std::size_t i) {
         Vec3& x = store.position[i];
-        if (wall.on_fluid_side(x)) continue;
         Vec3& v = store.velocity[i];
         const double m = (*context.mass)[store.species[i]];
         const Vec3 start = x - dt * v;  // the drift moved it by v dt in a straight line
@@ -60,7 +60,7 @@ void bounce(const WallGeometry& wall, ParticleStore& store, const BoundaryContex
                 << " at step " << context.step << " (it crossed the region in one step?)";
             fault = msg.str();
         }
-    }
+    });
 }
 
 class SpecularWall final : public BoundaryRule {
