@@ -5,8 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <utility>
 
+#include "emergent/error.hpp"
+#include "emergent/planar_noise.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 #include "observe/field_accumulator.hpp"
@@ -166,4 +169,39 @@ TEST(RayleighBenard, SameTrajectoryOnAnyRankCount) {
         worst = std::max(worst, std::sqrt(dot(d, d)));
     }
     EXPECT_LT(worst, 1e-8);
+}
+
+TEST(RayleighBenard, SeedNoiseScalesEachAtomsTemperatureByItsLocalFactor) {
+    // The same seed with and without the start perturbation: every atom's speed squared is
+    // scaled by exactly 1 + noise(x, y) sin(pi z / height), the field the scene was asked for
+    // (its own properties are tested in unit_tests), whatever the rank count.
+    BuiltScene plain = build(MPI_COMM_SELF, tiny({"seed=5"}));
+    BuiltScene seeded =
+        build(MPI_COMM_WORLD, tiny({"seed=5", "noise_amplitude=0.2", "noise_wavelength=0.5"}));
+    const PlanarNoise noise(12, 12, 5, 0.2, 5 + 43);  // the scene's seed offset is 43
+    ASSERT_GT(noise.modes(), 5u);
+    const ParticleStore& p = plain.sim->particles();
+    const ParticleStore& s = seeded.sim->particles();
+    std::map<std::int64_t, std::size_t> index;
+    for (std::size_t i = 0; i < p.n_owned(); ++i) index[p.id[i]] = i;
+    double worst = 0, spread = 0;
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+        const std::size_t j = index.at(s.id[i]);
+        const Vec3& x = p.position[j];
+        ASSERT_EQ(dot(x - s.position[i], x - s.position[i]), 0.0);
+        const double expected = 1 + noise(x.x, x.y) * std::sin(M_PI * x.z / 10);
+        const double ratio = dot(s.velocity[i], s.velocity[i]) / dot(p.velocity[j], p.velocity[j]);
+        worst = std::max(worst, std::abs(ratio - expected));
+        spread = std::max(spread, std::abs(ratio - 1));
+    }
+    EXPECT_LT(worst, 1e-12);
+    EXPECT_GT(spread, 0.1);  // the perturbation is there at all
+}
+
+TEST(RayleighBenard, SeedNoiseThatWouldMakeATemperatureNegativeIsRefused) {
+    // Shortest wavelength 10 in a 12 x 12 layer: two modes, cos(2 pi x / 12 + a) and
+    // cos(2 pi y / 12 + b), each of amplitude 0.9 at rms 0.9; their sum reaches -1.8, so the
+    // factor 1 + noise sin(pi z / 10) is negative around mid-height there.
+    EXPECT_THROW(build(MPI_COMM_WORLD, tiny({"noise_amplitude=0.9", "noise_wavelength=1"})),
+                 InputError);
 }
