@@ -125,6 +125,8 @@ void H5mdWriter::write_observable(const std::string& name, long long step, doubl
     series->append(step, time, value.data(), 0, rows, comm_);
 }
 
+void H5mdWriter::flush() { H5Fflush(file_, H5F_SCOPE_GLOBAL); }
+
 void H5mdWriter::finish() {
     if (file_ < 0) return;
     H5Id h5md = open_group(file_, "h5md");

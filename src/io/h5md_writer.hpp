@@ -45,6 +45,9 @@ public:
     void write_observable(const std::string& name, long long step, double time,
                           const std::vector<double>& value);
 
+    /// Writes everything appended so far to disk, so a run killed later keeps it. Collective.
+    void flush();
+
     /// Marks the file complete (attribute /h5md/emergent_complete = 1) and closes it.
     void finish();
 

@@ -75,6 +75,8 @@ void RunOutput::on_sample(const ThermoSample& t, const Measures& scene_measures)
     trajectory_->write_observable("momentum", t.step, t.time,
                                   {t.momentum.x, t.momentum.y, t.momentum.z});
     if (t.max_overlap >= 0) trajectory_->write_observable("max_overlap", t.step, t.time, {t.max_overlap});
+    // A killed run keeps its series up to the last sample (particle frames may be rare).
+    trajectory_->flush();
 }
 
 void RunOutput::on_step(Simulation& sim) {
@@ -94,6 +96,7 @@ void RunOutput::on_step(Simulation& sim) {
             if (scene_ && g > 0)  // grid 0 is the run's box grid, the others the scene's
                 for (const auto& [name, value] : scene_->analyse_fields(fields_[g].grid(), frame))
                     trajectory_->write_observable(name, step, sim.time(), value);
+            if (g + 1 == fields_.size()) trajectory_->flush();
         }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;

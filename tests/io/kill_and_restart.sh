@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A run killed with SIGKILL at a random moment leaves a readable checkpoint no older than one
-# interval, from which the run finishes.
+# interval, from which the run finishes, and a trajectory that keeps its observables.
 # usage: kill_and_restart.sh EMERGENT
 set -euo pipefail
 exe=$1
@@ -22,6 +22,17 @@ step = int(f["checkpoint"].attrs["step"])
 assert step > 0 and step % int(sys.argv[2]) == 0, f"checkpoint step {step}"
 assert f["checkpoint/position"].shape == (864, 3)
 print(f"checkpoint readable at step {step}")
+PY
+# The killed run's trajectory keeps its observables up to the checkpoint (one sampling
+# interval, 100 steps, at most before it): series are flushed as they are written.
+/usr/bin/python3 - "$dir/run/trajectory.h5" "$dir/run/checkpoint.h5" <<'PY'
+import sys, h5py
+t = h5py.File(sys.argv[1], "r")
+step = int(h5py.File(sys.argv[2], "r")["checkpoint"].attrs["step"])
+assert "temperature" in t["observables"], "killed run lost its observables"
+last = int(t["observables/temperature/step"][-1])
+assert last >= step - 100, f"observables end at step {last}, checkpoint at {step}"
+print(f"observables kept to step {last}")
 PY
 # Continue a little past the checkpoint.
 step=$(/usr/bin/python3 -c "import h5py,sys; print(h5py.File(sys.argv[1],'r')['checkpoint'].attrs['step'])" "$dir/run/checkpoint.h5")
