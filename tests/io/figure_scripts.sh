@@ -16,12 +16,30 @@ trap 'rm -rf "$dir"' EXIT
 "$exe" run rayleigh-benard --preset tiny --set steps=1000 --set fields.interval=250 \
   --set fields.grid=4x4x5 --set progress_interval=0 -o "$dir/rb" >/dev/null
 "$scripts/plot_rayleigh_benard" "$dir/rb" "$dir/rb/fig" >/dev/null
+# A run continued from its checkpoint is read as one run by the comparison script: frames
+# every 1.25 tau to 7.5 (1500 steps), each once and in order, each with its Nusselt number.
+"$exe" run rayleigh-benard --preset tiny --set steps=1000 --set fields.interval=250 \
+  --set conduction_flux=0.5 --set progress_interval=0 --checkpoint-every 500 -o "$dir/rbc" >/dev/null
+"$exe" run --restart "$dir/rbc/checkpoint.h5" --set steps=1500 --set progress_interval=0 \
+  -o "$dir/rbc" >/dev/null
+"$exe" run rayleigh-benard --preset tiny --set steps=500 --set fields.interval=250 \
+  --set noise_amplitude=0.1 --set progress_interval=0 -o "$dir/rbn" >/dev/null
+"$scripts/compare_rayleigh_benard" "$dir/cmp" "$dir/rbc=continued" "$dir/rbn=seeded" >"$dir/cmp.txt"
+/usr/bin/python3 - "$dir/cmp.txt" <<'PY'
+import sys
+rows = [l.split("|")[1:-1] for l in open(sys.argv[1]) if l.startswith("| ") and "t (tau)" not in l]
+continued = rows[:6]
+times = [float(r[0]) for r in continued]
+assert times == [1.25 * k for k in range(1, 7)], times
+assert all(r[2].strip() != "-" for r in continued), continued
+assert len(rows) == 6 + 2, rows
+PY
 "$exe" run rotating-drum --preset tiny --set progress_interval=0 -o "$dir/rd" >/dev/null
 "$scripts/plot_rotating_drum" "$dir/rd" "$dir/rd/fig" >/dev/null
 for png in "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
            "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
-           "$dir/rb/fig-flow.png"; do
+           "$dir/rb/fig-flow.png" "$dir/cmp.png"; do
   # A PNG signature and more than a blank canvas's worth of bytes.
   [ "$(head -c 8 "$png" | od -An -tx1 | tr -d ' \n')" = "89504e470d0a1a0a" ] || { echo "FAIL: $png is not a PNG"; exit 1; }
   [ "$(stat -c %s "$png")" -gt 10000 ] || { echo "FAIL: $png is nearly empty"; exit 1; }
