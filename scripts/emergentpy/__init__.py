@@ -5,27 +5,61 @@
     t, T = run.observable("temperature")
     step, x = run.frame("position", -1)        # last frame, particles in id order
     times, rho = run.field("box", "density")   # [frames, n_s, n_y, n_x]
+
+A continued run (its trajectory.from<STEP>.h5 and fields.from<STEP>.h5) reads as one.
 """
 import glob
 import os
+import re
 
 import h5py
 import numpy as np
 
 
-class Run:
-    """One output directory: trajectory.h5 (H5MD), fields.h5, summary.json."""
+def _joined(pieces):
+    """Concatenates (time, value) pieces, keeping from each only the times after the last."""
+    times, values, last = [], [], -np.inf
+    for t, v in pieces:
+        keep = t > last + 1e-9
+        times.append(t[keep])
+        values.append(v[keep])
+        if keep.any():
+            last = t[keep][-1]
+    if not times:
+        raise KeyError("no segment holds it")
+    return np.concatenate(times), np.concatenate(values)
 
-    def __init__(self, directory, trajectory="trajectory.h5", fields="fields.h5"):
+
+def _segments(directory, stem):
+    """stem.h5, then the continued runs' stem.from<STEP>.h5 in step order."""
+    files = glob.glob(os.path.join(directory, stem + ".from*.h5"))
+    files.sort(key=lambda f: int(re.search(r"from(\d+)\.h5$", f).group(1)))
+    first = os.path.join(directory, stem + ".h5")
+    return ([first] if os.path.exists(first) else []) + files
+
+
+class Run:
+    """One output directory: trajectory.h5 (H5MD), fields.h5, summary.json. A run continued
+    from checkpoints (trajectory.from<STEP>.h5, fields.from<STEP>.h5) is read as one run:
+    series and fields are joined in time; parameters, box and completeness come from the last
+    segment. Naming a file (trajectory=..., fields=...) reads that segment alone."""
+
+    def __init__(self, directory, trajectory=None, fields=None):
         self.directory = directory
-        self.trajectory_path = os.path.join(directory, trajectory)
-        self.fields_path = os.path.join(directory, fields)
+        self.trajectory_paths = ([os.path.join(directory, trajectory)] if trajectory else
+                                 _segments(directory, "trajectory")
+                                 or [os.path.join(directory, "trajectory.h5")])
+        self.fields_paths = ([os.path.join(directory, fields)] if fields else
+                             _segments(directory, "fields") or [os.path.join(directory, "fields.h5")])
+        self.trajectory_path = self.trajectory_paths[0]
+        self.fields_path = self.fields_paths[0]
 
     def _trajectory(self):
-        return h5py.File(self.trajectory_path, "r")
+        return h5py.File(self.trajectory_paths[-1], "r")
 
     def parameters(self):
-        """Every resolved run parameter, as text."""
+        """Every resolved run parameter, as text (of the last segment: a continued run may
+        have changed some, typically steps)."""
         with self._trajectory() as f:
             return {k: (v.decode() if isinstance(v, bytes) else v) for k, v in f["parameters"].attrs.items()}
 
@@ -34,20 +68,38 @@ class Run:
             return int(f["h5md"].attrs.get("emergent_complete", 0)) == 1
 
     def observables(self):
-        with self._trajectory() as f:
-            return sorted(f["observables"].keys())
+        names = set()
+        for path in self.trajectory_paths:
+            with h5py.File(path, "r") as f:
+                names.update(f["observables"].keys())
+        return sorted(names)
 
     def observable(self, name):
-        """(time, value) arrays of /observables/<name>."""
-        with self._trajectory() as f:
-            g = f["observables"][name]
-            return g["time"][:], g["value"][:]
+        """(time, value) arrays of /observables/<name>, over every segment that holds it (a
+        killed segment may have kept none)."""
+        pieces = []
+        for path in self.trajectory_paths:
+            with h5py.File(path, "r") as f:
+                if name in f["observables"]:
+                    g = f["observables"][name]
+                    pieces.append((g["time"][:], g["value"][:]))
+        return _joined(pieces)
 
     def frame(self, element, index=-1):
-        """(step, value) of one frame of a particle element, in particle-id order."""
-        with self._trajectory() as f:
-            g = f["particles/all"][element]
-            return int(g["step"][index]), g["value"][index]
+        """(step, value) of one frame of a particle element, in particle-id order; frames are
+        counted over the segments (a restart's first frame repeats its checkpoint's step)."""
+        counts = []
+        for path in self.trajectory_paths:
+            with h5py.File(path, "r") as f:
+                counts.append(len(f["particles/all"][element]["step"]))
+        index = index + sum(counts) if index < 0 else index
+        for path, n in zip(self.trajectory_paths, counts):
+            if index < n:
+                with h5py.File(path, "r") as f:
+                    g = f["particles/all"][element]
+                    return int(g["step"][index]), g["value"][index]
+            index -= n
+        raise IndexError("frame index out of range")
 
     def box(self):
         with self._trajectory() as f:
@@ -68,10 +120,14 @@ class Run:
             return sorted(f["fields"].keys())
 
     def field(self, grid, quantity):
-        """(time, value) of a coarse-grained field; value is [frames, n_s, n_y|theta, n_x|r(, 3)]."""
-        with h5py.File(self.fields_path, "r") as f:
-            g = f["fields"][grid][quantity]
-            return g["time"][:], g["value"][:]
+        """(time, value) of a coarse-grained field over the segments; value is
+        [frames, n_s, n_y|theta, n_x|r(, 3)]."""
+        pieces = []
+        for path in self.fields_paths:
+            with h5py.File(path, "r") as f:
+                g = f["fields"][grid][quantity]
+                pieces.append((g["time"][:], g["value"][:]))
+        return _joined(pieces)
 
     def field_axes(self, grid):
         """Cell-centre coordinates along the grid's three axes (x|r, y|theta, z|s)."""
@@ -88,7 +144,7 @@ class Run:
 
     def segments(self):
         """The trajectory files of this directory: the original and continued runs."""
-        return sorted(glob.glob(os.path.join(self.directory, "trajectory*.h5")))
+        return list(self.trajectory_paths)
 
 
 def cosine_modes(profiles, modes):

@@ -59,5 +59,15 @@ step, x = run.frame("position", -1)
 assert step == 400 and x.shape == (256, 3)
 t, rho = run.field("box", "density")
 assert rho.shape == (4, 6, 1, 4), rho.shape
-print("ok: figure scripts wrote PNGs; emergentpy reads the run")
+# A continued run reads as one: series and fields joined in time, each time once.
+both = Run(sys.argv[1] + "/rbc")
+assert len(both.segments()) == 2, both.segments()
+t, T = both.observable("temperature")
+assert (t[1:] > t[:-1]).all() and len(t) == 15 and abs(t[-1] - 7.5) < 1e-9, t  # every 0.5 tau
+tf, slice_t = both.field("slice", "temperature")
+assert len(tf) == 6 and abs(tf[-1] - 7.5) < 1e-9, tf
+assert both.parameters()["steps"] == "1500"
+step, _ = both.frame("position", -1)
+assert step == 1500, step
+print("ok: figure scripts wrote PNGs; emergentpy reads the run and a continued one")
 PY
