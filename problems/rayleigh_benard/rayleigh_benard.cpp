@@ -3,8 +3,10 @@
 // gravity, periodic in x and y. Above onset, convection cells form; they are found as the
 // temperature minima of a horizontal slice at 0.3 of the height (cold fluid sinks at the cell
 // centres) and measured by their periodic Voronoi polygons and by the slice's power spectrum.
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "emergent/cell_pattern.hpp"
 #include "emergent/error.hpp"
@@ -70,11 +72,24 @@ public:
         // smoothing over a cell in the small preset); a broadband seed shortens the wait
         // without choosing the wavelength for them.
         const double noise = config_.real("noise_amplitude");
-        if (noise > 0)
-            perturb_layer_temperature(
-                sim, PlanarNoise(lx_, ly_, config_.real("noise_wavelength") * lz_, noise,
-                                 static_cast<std::uint64_t>(config_.integer("seed")) + 43),
-                lz_);
+        if (noise > 0) {
+            const double shortest = config_.real("noise_wavelength") * lz_;
+            const std::string item = config_.scene() + ": noise_amplitude=" +
+                                     config_.text("noise_amplitude") + " with noise_wavelength=" +
+                                     config_.text("noise_wavelength");
+            // The longest wave of the plane is its larger width.
+            if (shortest > std::max(lx_, ly_))
+                throw InputError(item + ": no wave of the " + config_.text("width_x") + " x " +
+                                 config_.text("width_y") + " layer is that long");
+            try {
+                perturb_layer_temperature(
+                    sim, PlanarNoise(lx_, ly_, shortest, noise,
+                                     static_cast<std::uint64_t>(config_.integer("seed")) + 43),
+                    lz_);
+            } catch (const InputError& e) {
+                throw InputError(item + ": " + e.what());
+            }
+        }
         fresh_start_ = true;
     }
 
