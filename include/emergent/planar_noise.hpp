@@ -25,14 +25,13 @@ public:
     std::size_t modes() const { return modes_.size(); }
 
     /// The largest |value| the field can take (sum of the mode amplitudes).
-    double bound() const { return bound_; }
+    double bound() const { return modes_.empty() ? 0.0 : modes_.front().amplitude * modes_.size(); }
 
 private:
     struct Mode {
         double kx, ky, phase, amplitude;
     };
-    std::vector<Mode> modes_;
-    double bound_ = 0;
+    std::vector<Mode> modes_;  ///< all of the same amplitude
 };
 
 /// Scales the velocities of the particles between two horizontal walls at z = 0 and

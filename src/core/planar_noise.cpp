@@ -45,7 +45,6 @@ PlanarNoise::PlanarNoise(double lx, double ly, double min_wavelength, double rms
     // orthogonal there.
     const double amplitude = rms * std::sqrt(2.0 / static_cast<double>(modes_.size()));
     for (Mode& m : modes_) m.amplitude = amplitude;
-    bound_ = amplitude * static_cast<double>(modes_.size());
 }
 
 double PlanarNoise::operator()(double x, double y) const {

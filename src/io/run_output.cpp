@@ -89,15 +89,16 @@ void RunOutput::on_step(Simulation& sim) {
     if (!fields_.empty() && fresh_step && first_step_seen_ && step % field_sample_every_ == 0)
         for (auto& f : fields_) f.add(sim.particles(), sim.species_masses(), sim.box());
     first_step_seen_ = true;
-    if (!fields_.empty() && step % field_interval_ == 0 && fields_.front().samples() > 0)
+    if (!fields_.empty() && step % field_interval_ == 0 && fields_.front().samples() > 0) {
         for (std::size_t g = 0; g < fields_.size(); ++g) {
             const FieldFrame frame = fields_[g].take(sim.comm());
             if (field_writer_) field_writer_->write(g, step, sim.time(), frame);
             if (scene_ && g > 0)  // grid 0 is the run's box grid, the others the scene's
                 for (const auto& [name, value] : scene_->analyse_fields(fields_[g].grid(), frame))
                     trajectory_->write_observable(name, step, sim.time(), value);
-            if (g + 1 == fields_.size()) trajectory_->flush();
         }
+        trajectory_->flush();
+    }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
     trajectory_->write_particles(sim.particles(), step, sim.time());
