@@ -280,7 +280,8 @@ ProblemInfo rayleigh_benard_info() {
     // height is the lever. Height 40 at s = 0.83 is above the paper's smaller system; two
     // critical wavelengths (2 x height) across. On 2 cores (2.8-3.5 s per tau) the Nusselt
     // number passes 1.05 after 625-900 tau (29-52 min) in three seeds and levels off at 1.11
-    // with four or five cells of inradius ~1.05-1.08 height (benchmarks/RESULTS.md).
+    // with four or five cells of inradius ~1.05-1.08 height. Measured neighbours, height 45 and
+    // g scale 1.1, grew their cells no sooner in tau (benchmarks/RESULTS.md).
     info.presets["small"] = {{"width_x", "160"}, {"width_y", "160"}, {"height", "40"},
                              {"gravity_scale", "0.83"}, {"equilibration_steps", "0"},
                              // Its 40 x 40 column (no room for a cell): 0.5105 +- 0.0027,
