@@ -51,13 +51,21 @@ struct FieldGrid {
 
     /// Linear cell index (x fastest) of a point, or -1 outside the grid.
     EMERGENT_HD int cell_of(const Vec3& p) const {
+        if (kind == Kind::Cartesian) {
+            // The axes in the order z, y, x: a thin horizontal slice (the commonest partial
+            // grid) turns most points away after one test.
+            int c[3];
+            for (int d = 2; d >= 0; --d) {
+                const Real f = (p[d] - lo[d]) / (hi[d] - lo[d]);
+                if (!(f >= 0 && f < 1)) return -1;
+                c[d] = static_cast<int>(f * n[d]);
+                if (c[d] >= n[d]) c[d] = n[d] - 1;
+            }
+            return (c[2] * n.y + c[1]) * n.x + c[0];
+        }
         const Vec3 q = coordinates(p);
-        const Real lower[3] = {kind == Kind::Cartesian ? lo.x : r_min,
-                               kind == Kind::Cartesian ? lo.y : theta_min,
-                               lo[kind == Kind::Cartesian ? 2 : axis]};
-        const Real upper[3] = {kind == Kind::Cartesian ? hi.x : r_max,
-                               kind == Kind::Cartesian ? hi.y : theta_max,
-                               hi[kind == Kind::Cartesian ? 2 : axis]};
+        const Real lower[3] = {r_min, theta_min, lo[axis]};
+        const Real upper[3] = {r_max, theta_max, hi[axis]};
         int c[3];
         for (int d = 0; d < 3; ++d) {
             const Real f = (q[d] - lower[d]) / (upper[d] - lower[d]);

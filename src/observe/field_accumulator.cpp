@@ -7,32 +7,35 @@
 
 namespace emergent {
 
-namespace {
-constexpr int kSums = 6;  // count, mass, px, py, pz, m v^2
-}
-
 FieldAccumulator::FieldAccumulator(const FieldGrid& grid)
     : grid_(grid), sums_(static_cast<std::size_t>(grid.n_cells()) * kSums, 0.0) {}
 
-void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>& species_mass,
-                           const Box& box) {
+namespace {
+template <class Each>
+void for_each_owned(const ParticleStore& store, const std::vector<double>& species_mass,
+                    const Box& box, Each&& each) {
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
         // Between list builds owned particles may sit just past a periodic face; a hair below
         // lo must land at lo, not round up to hi (outside every cell).
-        const Vec3 x = box.primary_image(store.position[i]);
-        const int c = grid_.cell_of(x);
-        if (c < 0) continue;
-        const double m = species_mass[store.species[i]];
-        const Vec3 v = grid_.components(x, store.velocity[i]);
-        double* s = &sums_[static_cast<std::size_t>(c) * kSums];
-        s[0] += 1;
-        s[1] += m;
-        s[2] += m * v.x;
-        s[3] += m * v.y;
-        s[4] += m * v.z;
-        s[5] += m * dot(v, v);
+        each(box.primary_image(store.position[i]), store.velocity[i],
+             species_mass[store.species[i]]);
     }
-    ++samples_;
+}
+}  // namespace
+
+void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>& species_mass,
+                           const Box& box) {
+    for_each_owned(store, species_mass, box,
+                   [&](const Vec3& x, const Vec3& v, double m) { add_particle(x, v, m); });
+    count_sample();
+}
+
+void add_sample(std::vector<FieldAccumulator>& fields, const ParticleStore& store,
+                const std::vector<double>& species_mass, const Box& box) {
+    for_each_owned(store, species_mass, box, [&](const Vec3& x, const Vec3& v, double m) {
+        for (FieldAccumulator& f : fields) f.add_particle(x, v, m);
+    });
+    for (FieldAccumulator& f : fields) f.count_sample();
 }
 
 std::vector<double> FieldAccumulator::global_sums(MPI_Comm comm) const {

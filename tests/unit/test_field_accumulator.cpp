@@ -144,3 +144,53 @@ TEST(FieldAccumulator, ParticlesJustPastAPeriodicFaceAreCounted) {
     EXPECT_EQ(f.count[0], 2);  // -1e-17 lands at lo, 10.25 at 0.25
     EXPECT_EQ(f.count[1], 1);
 }
+
+TEST(FieldAccumulator, OnePassOverSeveralGridsEqualsEachGridAlone) {
+    // add_sample folds each position once and fills every grid from it; the sums must be
+    // exactly those of FieldAccumulator::add per grid. The grids: the whole periodic box, a
+    // thin slab that most particles miss (tested on its z extent first), and a cylindrical
+    // shell (the other branch of FieldGrid::cell_of).
+    Box box;
+    box.hi = {12, 12, 12};
+    ParticleStore s;
+    fill(s, 3000, 12, 1.5, 7, [](const Vec3& x) { return Vec3{0.1 * x.z, 0, 0.05 * x.x}; });
+    for (std::size_t i = 0; i < s.n_owned(); i += 7) s.position[i].x -= 12.2;  // past a face
+    FieldGrid whole;
+    whole.n = {3, 3, 4};
+    whole.hi = box.hi;
+    FieldGrid slab;
+    slab.n = {6, 6, 1};
+    slab.lo = {0, 0, 3.5};
+    slab.hi = {12, 12, 4.5};
+    FieldGrid shell;
+    shell.kind = FieldGrid::Kind::Cylindrical;
+    shell.n = {3, 4, 2};
+    shell.lo = {6, 6, 0};
+    shell.hi = {6, 6, 12};
+    shell.r_min = 1;
+    shell.r_max = 5;
+    const std::vector<double> mass{1.0};
+    std::vector<FieldAccumulator> together{FieldAccumulator(whole), FieldAccumulator(slab),
+                                           FieldAccumulator(shell)};
+    for (int sample = 0; sample < 2; ++sample) add_sample(together, s, mass, box);
+    for (std::size_t g = 0; g < together.size(); ++g) {
+        FieldAccumulator alone(together[g].grid());
+        for (int sample = 0; sample < 2; ++sample) alone.add(s, mass, box);
+        EXPECT_EQ(together[g].samples(), 2);
+        const FieldFrame a = together[g].take(MPI_COMM_SELF), b = alone.take(MPI_COMM_SELF);
+        double counted = 0;
+        for (std::size_t k = 0; k < a.count.size(); ++k) {
+            EXPECT_EQ(a.count[k], b.count[k]) << "grid " << g << " cell " << k;
+            EXPECT_EQ(a.density[k], b.density[k]);
+            for (int d = 0; d < 3; ++d) EXPECT_EQ(a.velocity[3 * k + d], b.velocity[3 * k + d]);
+            if (a.count[k] > 1) EXPECT_EQ(a.temperature[k], b.temperature[k]);
+            counted += a.count[k];
+        }
+        // Every particle is in the whole box's grid; the slab holds about 1/12 of them.
+        if (g == 0) EXPECT_EQ(counted, 2 * 3000);
+        if (g == 1) {
+            EXPECT_GT(counted, 2 * 150);
+            EXPECT_LT(counted, 2 * 350);
+        }
+    }
+}
