@@ -43,6 +43,10 @@ public:
     /// on a continued run, after build().
     virtual Measures saved_state() const { return {}; }
     virtual void restore_state(const std::map<std::string, std::vector<double>>& /*state*/) {}
+    /// A few words for the run's progress line, from this sample's `measures` and the scene's
+    /// own latest analysis; by default the turns or shakes done ("revolutions", "cycles") when
+    /// the scene measures them. Called on the printing rank only, so never collective.
+    virtual std::string progress_note(const Measures& measures) const;
 };
 
 /// Named sets of parameter values, e.g. presets["tiny"]["n_cells"] = "4".

@@ -5,6 +5,7 @@
 // centres) and measured by their periodic Voronoi polygons and by the slice's power spectrum.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -131,6 +132,19 @@ public:
         return m;
     }
 
+    /// The latest frame's Nusselt number (or heat flux, when no conduction flux is set) and
+    /// cell count: what a person waiting for the cells watches.
+    std::string progress_note(const Measures&) const override {
+        if (!std::isfinite(latest_flux_)) return "";
+        const double reference = config_.real("conduction_flux");
+        char note[64];
+        if (reference > 0)
+            std::snprintf(note, sizeof note, "Nu=%.3f cells=%d", latest_flux_ / reference, latest_cells_);
+        else
+            std::snprintf(note, sizeof note, "heat_flux=%.4f cells=%d", latest_flux_, latest_cells_);
+        return note;
+    }
+
     Measures saved_state() const override {
         return {{"heat_flux_samples", flux_.samples()},
                 {"cell_count_samples", cells_.samples()},
@@ -174,6 +188,7 @@ private:
         last_bottom_ = bottom, last_top_ = top, last_time_ = now;
         const double flux = 0.5 * (in + out);
         if (now > start_time_ + 1e-9 && std::isfinite(flux)) flux_.add(flux);
+        latest_flux_ = flux;
         const double reference = config_.real("conduction_flux");
         Measures m = {{"heat_flux", {in, out, flux}}};
         if (reference > 0) m.push_back({"nusselt", {flux / reference}});
@@ -206,6 +221,7 @@ private:
         for (std::size_t k = 0; k < centres.size() && k < max_cells; ++k)
             xy[2 * k] = centres[k][0], xy[2 * k + 1] = centres[k][1];
         if (sim_->time() > start_time_ + 1e-9) cells_.add(cells.cells);
+        latest_cells_ = cells.cells;
         std::vector<double> histogram(cells.edge_histogram.begin(), cells.edge_histogram.end());
         return {{"cell_count", {double(cells.cells)}},
                 {"cell_centres", xy},
@@ -225,6 +241,8 @@ private:
     WallLayerThermostat *bottom_layer_ = nullptr, *top_layer_ = nullptr;
     bool fresh_start_ = false, have_last_ = false;
     double last_bottom_ = 0, last_top_ = 0, last_time_ = 0;
+    double latest_flux_ = kNaN;  ///< of the latest profile frame (progress line only)
+    int latest_cells_ = 0;
     BlockAverage flux_{10}, cells_{10};
 };
 

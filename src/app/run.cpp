@@ -35,18 +35,17 @@ public:
         : interval_(interval), first_(first), total_(total), printer_(printer),
           start_(Clock::now()), last_(start_) {}
 
-    /// Scenes that turn or shake report "revolutions" or "cycles"; the line shows them.
-    void maybe_print(const ThermoSample& t, const char* phase, const Measures& measures) {
+    /// The line carries the scene's progress note (Problem::progress_note) after the time.
+    void maybe_print(const ThermoSample& t, const char* phase, const Problem& problem,
+                     const Measures& measures) {
         if (!printer_ || interval_ <= 0 || seconds_since(last_) < interval_) return;
         last_ = Clock::now();
         const double rate = (t.step - first_) / std::max(1e-9, seconds_since(start_));
         const double eta = (total_ - t.step) / std::max(1e-9, rate);
-        char periods[48] = "";
-        for (const auto& [name, value] : measures)
-            if ((name == "revolutions" || name == "cycles") && !value.empty())
-                std::snprintf(periods, sizeof periods, "  %s=%.2f", name.c_str(), value[0]);
-        std::printf("step %lld/%lld %s  t=%.3f%s  %.3g steps/s  ETA %.0fs  T=%.5f  E/N=%.6f\n",
-                    t.step, total_, phase, t.time, periods, rate, eta, t.temperature, t.total);
+        const std::string note = problem.progress_note(measures);
+        std::printf("step %lld/%lld %s  t=%.3f%s%s  %.3g steps/s  ETA %.0fs  T=%.5f  E/N=%.6f\n",
+                    t.step, total_, phase, t.time, note.empty() ? "" : "  ", note.c_str(), rate,
+                    eta, t.temperature, t.total);
         std::fflush(stdout);
     }
 
@@ -142,7 +141,8 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
                 last_measures = problem.measures(sim);
                 output.on_sample(t, last_measures);
                 if (s >= n_eq) series.push_back(t);
-                progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "", last_measures);
+                progress.maybe_print(t, s <= n_eq ? "(equilibration)" : "", problem,
+                                     last_measures);
             }
             if (checkpoint)
                 io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series,

@@ -1,11 +1,22 @@
 // SPDX-License-Identifier: MIT
-// Scene registry, engine run parameters and configuration resolution.
+// Scene registry, engine run parameters and configuration resolution; what scenes share.
+#include <cstdio>
 #include <stdexcept>
 
 #include "emergent/error.hpp"
 #include "emergent/problem.hpp"
 
 namespace emergent {
+
+std::string Problem::progress_note(const Measures& measures) const {
+    for (const auto& [name, value] : measures)
+        if ((name == "revolutions" || name == "cycles") && !value.empty()) {
+            char note[48];
+            std::snprintf(note, sizeof note, "%s=%.2f", name.c_str(), value[0]);
+            return note;
+        }
+    return "";
+}
 
 ProblemRegistry& ProblemRegistry::instance() {
     static ProblemRegistry registry;
