@@ -61,9 +61,13 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     using Real = double;
     // Precondition (the engine sorts owned particles by cell before each build): the list is
     // stored in order of i, and inner cells earlier than i's cell hold only smaller indices.
-    for (std::size_t i = 1; i < n_owned; ++i)
-        if (cells.cell_of(x[i]) < cells.cell_of(x[i - 1]))
+    int previous = n_owned > 0 ? cells.cell_of(x[0]) : 0;
+    for (std::size_t i = 1; i < n_owned; ++i) {
+        const int c = cells.cell_of(x[i]);
+        if (c < previous)
             throw std::logic_error("NeighbourList::build: owned particles not sorted by cell");
+        previous = c;
+    }
     offset_.assign(n_owned + 1, 0);
     const std::uint32_t* member = cells.members();
     const Vec3* xb = cells.binned_positions();
