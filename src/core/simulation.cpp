@@ -108,7 +108,7 @@ struct Simulation::Engine {
         cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
         store.permute_owned(order);
         halo.build(store, *grid, ghost_width(), ghost_fields);
-        cells.bin(store.position.data(), store.size());
+        cells.bin_after_sort(store.position.data(), store.size());
         // Wedge images turned by other than a quarter or half turn land inside the domain's
         // cells, so the search cannot assume those hold owned particles only.
         const bool mixed_cells =

@@ -43,11 +43,11 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range,
             }
 }
 
-void CellList::count(const Vec3* x, std::size_t n) {
+void CellList::count(const Vec3* x, std::size_t n, std::size_t known) {
     cell_.resize(n);
     start_.assign(n_cells() + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
-        cell_[i] = static_cast<std::uint32_t>(cell_of(x[i]));
+        if (i >= known) cell_[i] = static_cast<std::uint32_t>(cell_of(x[i]));
         ++start_[cell_[i] + 1];
     }
     for (int c = 0; c < n_cells(); ++c) start_[c + 1] += start_[c];
@@ -59,6 +59,8 @@ void CellList::sort_order(const Vec3* x, const std::int64_t* id, std::size_t n,
     order.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) order[next[cell_[i]]++] = static_cast<std::uint32_t>(i);
+    sorted_cell_.resize(n);
+    for (std::size_t k = 0; k < n; ++k) sorted_cell_[k] = cell_[order[k]];
     // A cell holds a few particles: insertion sort by id is cheapest.
     for (int c = 0; c < n_cells(); ++c)
         for (std::uint32_t k = start_[c] + 1; k < start_[c + 1]; ++k) {
@@ -70,7 +72,16 @@ void CellList::sort_order(const Vec3* x, const std::int64_t* id, std::size_t n,
 }
 
 void CellList::bin(const Vec3* x, std::size_t n) {
-    count(x, n);
+    sorted_cell_.clear();  // positions may have moved: look every cell up
+    bin_after_sort(x, n);
+}
+
+void CellList::bin_after_sort(const Vec3* x, std::size_t n) {
+    const std::size_t known = std::min(n, sorted_cell_.size());
+    cell_.resize(n);
+    std::copy(sorted_cell_.begin(), sorted_cell_.begin() + known, cell_.begin());
+    sorted_cell_.clear();  // good for one binning only
+    count(x, n, known);
     members_.resize(n);
     binned_.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);

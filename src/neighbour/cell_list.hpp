@@ -47,6 +47,10 @@ public:
 
     /// Bins positions [0, n) into cells; members of a cell are listed in ascending index.
     void bin(const Vec3* x, std::size_t n);
+    /// bin() right after sort_order(): positions [0, m) are the m particles that call ordered,
+    /// permuted by its order and not moved since (the rest, e.g. ghosts, are new), so their
+    /// cells are known and only the others are looked up. The same result as bin().
+    void bin_after_sort(const Vec3* x, std::size_t n);
 
     Int3 shape() const { return {n_[0], n_[1], n_[2]}; }
     /// Cells to search on each side along each axis for pairs within the range.
@@ -64,7 +68,9 @@ public:
     const Vec3* binned_positions() const { return binned_.data(); }
 
 private:
-    void count(const Vec3* x, std::size_t n);
+    /// Cells of particles [known, n) into cell_ (those before are set), then the per-cell
+    /// start offsets.
+    void count(const Vec3* x, std::size_t n, std::size_t known = 0);
 
     Vec3 origin_{}, lo_{}, hi_{};
     double inverse_width_[3] = {1, 1, 1};
@@ -73,6 +79,7 @@ private:
     int reach_[3] = {1, 1, 1};
     std::vector<char> inner_;  ///< per cell: 0 ghost, 1 inner, 2 inner with its stencil inner
     std::vector<std::uint32_t> start_, members_, cell_;
+    std::vector<std::uint32_t> sorted_cell_;  ///< cells of the last sort_order, in its order
     std::vector<Vec3> binned_;
 };
 

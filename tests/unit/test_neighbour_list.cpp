@@ -132,3 +132,40 @@ TEST(CellList, PointsOnDomainFacesFallOnTheirSide) {
     cells.setup({0, 0, -0.5}, {80, 40, 40.5}, 1.622462, 1.622462);
     EXPECT_FALSE(cells.is_inner(cells.cell_of({0.678, 40.0, 0.674})));
 }
+
+TEST(CellList, BinningAfterASortEqualsBinningAnew) {
+    // bin_after_sort takes the owned particles' cells from the sort that ordered them and
+    // looks up only the ghosts; every cell must hold exactly what a fresh bin() puts there.
+    Box box;
+    box.hi = {6.0, 7.5, 9.0};
+    decomp::RankGrid grid(MPI_COMM_SELF, box);
+    ParticleStore store;
+    for (int i = 0; i < 800; ++i)
+        store.add_owned({uniform_open(5, i, 0) * 6.0, uniform_open(5, i, 1) * 7.5,
+                         uniform_open(5, i, 2) * 9.0},
+                        {0, 0, 0}, 0, 799 - i);
+    const double rl = 1.5;
+    CellList after_sort, fresh;
+    after_sort.setup(grid.lo(), grid.hi(), rl, rl);
+    fresh.setup(grid.lo(), grid.hi(), rl, rl);
+    std::vector<std::uint32_t> order;
+    after_sort.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
+    store.permute_owned(order);
+    decomp::HaloExchange halo;
+    halo.build(store, grid, rl, kPosition | kId);
+    ASSERT_GT(store.size(), store.n_owned());  // ghosts to look up
+    after_sort.bin_after_sort(store.position.data(), store.size());
+    fresh.bin(store.position.data(), store.size());
+    for (int c = 0; c < fresh.n_cells(); ++c) {
+        ASSERT_EQ(after_sort.first(c), fresh.first(c)) << "cell " << c;
+        for (std::uint32_t s = fresh.first(c); s < fresh.first(c + 1); ++s) {
+            EXPECT_EQ(after_sort.members()[s], fresh.members()[s]);
+            EXPECT_EQ(after_sort.binned_positions()[s].x, fresh.binned_positions()[s].x);
+        }
+    }
+    // Used once: a second binning looks every cell up again (positions may have moved).
+    for (std::size_t i = 0; i < store.n_owned(); ++i) store.position[i].z = 0.5;
+    after_sort.bin_after_sort(store.position.data(), store.size());
+    fresh.bin(store.position.data(), store.size());
+    for (int c = 0; c <= fresh.n_cells(); ++c) ASSERT_EQ(after_sort.first(c), fresh.first(c));
+}
