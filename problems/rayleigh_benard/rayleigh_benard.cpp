@@ -197,13 +197,14 @@ private:
 
     Measures analyse_slice(const FieldGrid& grid, const FieldFrame& f) {
         PeriodicField2D field{grid.n.x, grid.n.y, lx_, ly_, f.temperature};
-        // Cells no particle visited (possible only in a very short frame) take the mean.
+        // Cells without a temperature (fewer than two particle samples: a short frame or a
+        // thin slice) take the mean of the others; one NaN would spread through the smoothing.
         double mean = 0, filled = 0;
-        for (std::size_t k = 0; k < field.value.size(); ++k)
-            if (f.count[k] > 0) mean += field.value[k], ++filled;
+        for (double t : field.value)
+            if (std::isfinite(t)) mean += t, ++filled;
         mean = filled > 0 ? mean / filled : 0;
-        for (std::size_t k = 0; k < field.value.size(); ++k)
-            if (!(f.count[k] > 0)) field.value[k] = mean;
+        for (double& t : field.value)
+            if (!std::isfinite(t)) t = mean;
         const PeriodicField2D smooth = smooth_periodic(field, config_.real("centre_smoothing") * lz_);
         const std::vector<Point2> centres = local_minima(smooth);
         const VoronoiPattern cells = periodic_voronoi(centres, lx_, ly_);
@@ -283,7 +284,8 @@ ProblemInfo rayleigh_benard_info() {
         .integer("max_cells", 512, 1, 1000000, "1", "cell centres written per frame (all are counted)")
         .real("conduction_flux", 0, 0, 1e9, "epsilon/(sigma^2 tau)",
               "heat flux of the conduction state of the same layer, for the Nusselt number (0: not "
-              "known; run the same layer in a column narrower than the height to measure it)");
+              "known; run the same layer in a periodic column as wide as it is high, too narrow "
+              "for a cell, to measure it)");
     // Skin 0.8: the hot wall's fastest atoms (T = 8) cross skin/2 = 0.15 in ~3 steps, so at
     // the engine's 0.3 lists are rebuilt every 3 steps; 0.7-0.9 is 1.4x faster (skin sweep in
     // benchmarks/RESULTS.md).

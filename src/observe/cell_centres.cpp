@@ -6,6 +6,7 @@
 #include <complex>
 
 #include "emergent/cell_pattern.hpp"
+#include "observe/fftw_array.hpp"
 
 namespace emergent {
 
@@ -19,8 +20,9 @@ int mode(int k, int n) { return k <= n / 2 ? k : k - n; }
 PeriodicField2D smooth_periodic(const PeriodicField2D& field, double width) {
     if (!(width > 0) || field.value.empty()) return field;
     const int nx = field.nx, ny = field.ny, nxc = nx / 2 + 1;
-    std::vector<double> data(field.value);
-    std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(ny) * nxc);
+    FftwArray<double> data(field.value.size());
+    std::copy(field.value.begin(), field.value.end(), data.begin());
+    FftwArray<std::complex<double>> spectrum(static_cast<std::size_t>(ny) * nxc);
     auto* out = reinterpret_cast<fftw_complex*>(spectrum.data());
     fftw_plan forward = fftw_plan_dft_r2c_2d(ny, nx, data.data(), out, FFTW_ESTIMATE);
     fftw_plan backward = fftw_plan_dft_c2r_2d(ny, nx, out, data.data(), FFTW_ESTIMATE);
@@ -36,7 +38,7 @@ PeriodicField2D smooth_periodic(const PeriodicField2D& field, double width) {
     fftw_destroy_plan(forward);
     fftw_destroy_plan(backward);
     PeriodicField2D smoothed = field;
-    smoothed.value = data;
+    smoothed.value.assign(data.begin(), data.end());
     return smoothed;
 }
 
@@ -48,7 +50,8 @@ std::vector<Point2> local_minima(const PeriodicField2D& f) {
         i = (i % nx + nx) % nx, j = (j % ny + ny) % ny;
         return i + nx * j;
     };
-    // Strict order with ties broken by index, so a flat bottom yields exactly one minimum.
+    // Strict order with ties broken by index, so two equal neighbours are never both minima
+    // (a flat bottom of simple shape yields one).
     auto lower = [&](int a, int b) { return f.value[a] < f.value[b] || (f.value[a] == f.value[b] && a < b); };
     // Vertex of the parabola through (-1, a), (0, b), (1, c), kept within the cell.
     auto vertex = [](double a, double b, double c) {

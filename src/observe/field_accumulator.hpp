@@ -43,7 +43,7 @@ public:
 
     /// Reduces over ranks, returns the interval's averages (complete on rank 0) and restarts.
     /// Temperature uses the unbiased estimate with 3(n - 1) degrees of freedom per cell; cells
-    /// with fewer than two samples get NaN temperature and zero flow.
+    /// with fewer than two samples get NaN temperature, and cells with none zero flow.
     FieldFrame take(MPI_Comm comm);
 
     /// The interval so far, summed over all ranks (for checkpoints). Collective.

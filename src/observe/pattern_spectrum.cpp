@@ -7,6 +7,7 @@
 #include <complex>
 
 #include "emergent/cell_pattern.hpp"
+#include "observe/fftw_array.hpp"
 
 namespace emergent {
 
@@ -21,9 +22,9 @@ PatternSpectrum pattern_spectrum(const PeriodicField2D& field) {
     double mean = 0;
     for (double v : field.value) mean += v;
     mean /= field.value.size();
-    std::vector<double> data(field.value.size());
+    FftwArray<double> data(field.value.size());
     for (std::size_t k = 0; k < data.size(); ++k) data[k] = field.value[k] - mean;
-    std::vector<std::complex<double>> spectrum(static_cast<std::size_t>(ny) * nxc);
+    FftwArray<std::complex<double>> spectrum(static_cast<std::size_t>(ny) * nxc);
     fftw_plan plan = fftw_plan_dft_r2c_2d(ny, nx, data.data(),
                                           reinterpret_cast<fftw_complex*>(spectrum.data()),
                                           FFTW_ESTIMATE);
