@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <vector>
 
 namespace emergent {
@@ -40,11 +41,12 @@ struct VoronoiPattern {
     std::vector<int> edges;           ///< per polygon, in the order of the points
     std::vector<double> inradius;     ///< per polygon
     std::vector<double> radial_range; ///< per polygon
-    double mean_edges = 0;            ///< exactly 6 on a torus (Euler) for a simple tessellation
-    double six_sided_fraction = 0;
-    double mean_inradius = 0;
-    double mean_radial_range = 0;
-    double radial_range_spread = 0;   ///< standard deviation of radial_range over polygons
+    // The means are NaN without any polygon (no point), so that no false zero is plotted.
+    double mean_edges = NAN;          ///< exactly 6 on a torus (Euler) for a simple tessellation
+    double six_sided_fraction = NAN;
+    double mean_inradius = NAN;
+    double mean_radial_range = NAN;
+    double radial_range_spread = NAN; ///< standard deviation of radial_range over polygons
     /// Paper's wavelength of the cell array: 2 x mean inradius (= centre spacing of hexagons).
     double wavelength() const { return 2 * mean_inradius; }
     /// Polygons with k edges, k = 0 .. 12 (13 and more in the last entry).
@@ -63,7 +65,7 @@ struct PatternSpectrum {
     double shell_width = 0;            ///< in k
     std::vector<double> shell_power;   ///< sum of |F_k|^2 / (nx ny)^2 over each shell; shell 0 unused
     int dominant_shell = 0;
-    double dominant_wavelength = 0;
+    double dominant_wavelength = NAN;  ///< NaN for a field without structure (flat)
 };
 PatternSpectrum pattern_spectrum(const PeriodicField2D& field);
 

@@ -89,20 +89,20 @@ TEST(PeriodicVoronoi, PoissonPointsMatchStochasticGeometry) {
     const VoronoiPattern v = periodic_voronoi(points, lx, ly);
     EXPECT_NEAR(v.mean_edges, 6.0, 1e-12);
     EXPECT_NEAR(v.six_sided_fraction, 0.29468, 4 * 0.0072);
-    EXPECT_LT(v.six_sided_fraction, 0.7);  // what a good hexagonal array exceeds
 }
 
-TEST(CellCentres, MinimaOfAHexagonalFieldLieOnItsLattice) {
-    // The field's minima sit exactly on a lattice that is offset from the grid's cell centres;
-    // the parabola through neighbouring cells places them to a small fraction of a cell.
+namespace {
+/// The minima of hexagonal_field(a, 4, 4, 48, 42, offset) against its lattice: all 16 found,
+/// each within 5 % of a grid cell of a lattice point, and their polygons regular hexagons.
+void check_minima_on_lattice(const Point2& offset) {
     const double a = 12.0;
-    const Point2 offset{3.1, 2.2};
     const PeriodicField2D f = hexagonal_field(a, 4, 4, 48, 42, offset);
     const auto minima = local_minima(f);
     ASSERT_EQ(minima.size(), 16u);
     const auto lattice = hexagonal_lattice(a, 4, 4, offset);
     const double dx = f.lx / f.nx;
     for (const Point2& p : minima) {
+        EXPECT_TRUE(p[0] >= 0 && p[0] < f.lx && p[1] >= 0 && p[1] < f.ly);  // folded into the box
         double best = 1e300;
         for (const Point2& q : lattice) {
             double ex = std::remainder(p[0] - q[0], f.lx), ey = std::remainder(p[1] - q[1], f.ly);
@@ -113,6 +113,21 @@ TEST(CellCentres, MinimaOfAHexagonalFieldLieOnItsLattice) {
     const VoronoiPattern v = periodic_voronoi(minima, f.lx, f.ly);
     EXPECT_EQ(v.six_sided_fraction, 1.0);
     EXPECT_NEAR(v.wavelength(), a, 0.02 * a);
+}
+}  // namespace
+
+TEST(CellCentres, MinimaOfAHexagonalFieldLieOnItsLattice) {
+    // The field's minima sit exactly on a lattice that is offset from the grid's cell centres;
+    // the parabola through neighbouring cells places them to a small fraction of a cell.
+    check_minima_on_lattice({3.1, 2.2});
+}
+
+TEST(CellCentres, MinimaAcrossThePeriodicEdgesAreFoundOnce) {
+    // Lattice points a hair inside the left edge and a hair below the top edge (which wraps
+    // onto the bottom): each minimum's neighbours lie across an edge, and its parabola fit
+    // reaches over it; none may be lost or found twice.
+    const double dx = 48.0 / 48, dy = 4 * 12.0 * std::sqrt(3.0) / 2 / 42;
+    check_minima_on_lattice({0.05 * dx, 4 * 12.0 * std::sqrt(3.0) / 2 - 0.1 * dy});
 }
 
 TEST(CellCentres, SmoothingDampsEachWaveByItsGaussianFactor) {
@@ -140,4 +155,20 @@ TEST(PatternSpectrum, FindsTheWavelengthOfRollsAndHexagons) {
     const double a = 12.0;
     const PeriodicField2D hex = hexagonal_field(a, 4, 4, 48, 42, {1.0, 2.0});
     EXPECT_NEAR(pattern_spectrum(hex).dominant_wavelength, std::sqrt(3.0) / 2 * a, 1e-9);
+}
+
+TEST(PeriodicVoronoi, NoPointsGiveNoPolygonsAndNoMeans) {
+    // A slice without minima has no cells; its means are undefined (NaN), not zero, so a plot
+    // of the wavelength against time shows a gap, not a false zero.
+    const VoronoiPattern v = periodic_voronoi({}, 10, 10);
+    EXPECT_EQ(v.cells, 0);
+    EXPECT_TRUE(std::isnan(v.mean_edges));
+    EXPECT_TRUE(std::isnan(v.six_sided_fraction));
+    EXPECT_TRUE(std::isnan(v.mean_inradius));
+    EXPECT_TRUE(std::isnan(v.wavelength()));
+}
+
+TEST(PatternSpectrum, AFlatFieldHasNoDominantWavelength) {
+    PeriodicField2D f{16, 8, 20.0, 10.0, std::vector<double>(16 * 8, 3.5)};
+    EXPECT_TRUE(std::isnan(pattern_spectrum(f).dominant_wavelength));
 }
