@@ -132,12 +132,15 @@ public:
     double cutoff() const override { return 0; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
                     bool sample, ForceSums& sums) const override {
-        const std::vector<double>& mass = *c.mass;
-        for (std::size_t i = 0; i < list.n_owned(); ++i) {
-            const double m = mass[s.species[i]];
-            s.force[i] += m * g_;
-            if (sample) sums.potential -= m * dot(g_, s.position[i]);
-        }
+        // Raw pointers and the sampling in its own loop: the force loop is then a plain
+        // streaming add (it runs every step for every particle).
+        const double* mass = c.mass->data();
+        const int* species = s.species.data();
+        Vec3* force = s.force.data();
+        const std::size_t n = list.n_owned();
+        for (std::size_t i = 0; i < n; ++i) force[i] += mass[species[i]] * g_;
+        if (!sample) return;
+        for (std::size_t i = 0; i < n; ++i) sums.potential -= mass[species[i]] * dot(g_, s.position[i]);
     }
 
 private:
