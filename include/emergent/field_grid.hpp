@@ -53,7 +53,9 @@ struct FieldGrid {
     EMERGENT_HD int cell_of(const Vec3& p) const {
         if (kind == Kind::Cartesian) {
             // The axes in the order z, y, x: a thin horizontal slice (the commonest partial
-            // grid) turns most points away after one test.
+            // grid) turns most points away after one test. Kept apart from the general branch
+            // below on purpose: merged into one loop, g++ 12 stops inlining the field sampler
+            // and a rayleigh-benard run takes 1.5 % more instructions (callgrind).
             int c[3];
             for (int d = 2; d >= 0; --d) {
                 const Real f = (p[d] - lo[d]) / (hi[d] - lo[d]);

@@ -12,6 +12,7 @@
 #include "emergent/random.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
+#include "support/random_points.hpp"
 
 using namespace emergent;
 
@@ -26,11 +27,7 @@ void check_list_against_brute_force(int subdivisions, bool general) {
     decomp::RankGrid grid(MPI_COMM_SELF, box);
     ParticleStore store;
     const int n = 600;
-    for (int i = 0; i < n; ++i) {
-        const Vec3 x{uniform_open(3, i, 0) * 6.0, uniform_open(3, i, 1) * 7.5,
-                     uniform_open(3, i, 2) * 9.0};
-        store.add_owned(x, {0, 0, 0}, 0, i);
-    }
+    fixtures::add_uniform_particles(store, box.hi, n, 3);
     NeighbourList list(1.12, 0.38);
     const double rl = list.list_cutoff();
     CellList cells;
@@ -140,10 +137,7 @@ TEST(CellList, BinningAfterASortEqualsBinningAnew) {
     box.hi = {6.0, 7.5, 9.0};
     decomp::RankGrid grid(MPI_COMM_SELF, box);
     ParticleStore store;
-    for (int i = 0; i < 800; ++i)
-        store.add_owned({uniform_open(5, i, 0) * 6.0, uniform_open(5, i, 1) * 7.5,
-                         uniform_open(5, i, 2) * 9.0},
-                        {0, 0, 0}, 0, 799 - i);
+    fixtures::add_uniform_particles(store, box.hi, 800, 5);
     const double rl = 1.5;
     CellList after_sort, fresh;
     after_sort.setup(grid.lo(), grid.hi(), rl, rl);

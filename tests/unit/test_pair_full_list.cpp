@@ -8,12 +8,12 @@
 #include "decomposition/halo_exchange.hpp"
 #include "decomposition/rank_grid.hpp"
 #include "emergent/execution.hpp"
-#include "emergent/random.hpp"
 #include "force/lennard_jones.hpp"
 #include "force/pair_full_list.hpp"
 #include "force/pair_loop.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
+#include "support/random_points.hpp"
 
 using namespace emergent;
 
@@ -23,9 +23,7 @@ TEST(PairFullList, SameForcesAsTheHalfListLoop) {
     box.hi = {9, 9, 9};
     decomp::RankGrid grid(MPI_COMM_SELF, box);
     ParticleStore store;
-    for (int i = 0; i < 600; ++i)
-        store.add_owned({9 * uniform_open(11, i, 0), 9 * uniform_open(11, i, 1), 9 * uniform_open(11, i, 2)},
-                        {0, 0, 0}, 0, i);
+    fixtures::add_uniform_particles(store, box.hi, 600, 11);
     const force::LennardJones lj({1.0, 1.0, 2.5});
     NeighbourList list(2.5, 0.3);
     CellList cells;
