@@ -163,3 +163,30 @@ TEST(CellList, BinningAfterASortEqualsBinningAnew) {
     fresh.bin(store.position.data(), store.size());
     for (int c = 0; c <= fresh.n_cells(); ++c) ASSERT_EQ(after_sort.first(c), fresh.first(c));
 }
+
+TEST(NeighbourList, OwnedParticlesOutOfCellOrderAreRefused) {
+    // The cell search relies on owned particles sorted by cell (the engine sorts before each
+    // build); a store that is not must be refused, not searched wrongly.
+    Box box;
+    box.hi = {6.0, 7.5, 9.0};
+    decomp::RankGrid grid(MPI_COMM_SELF, box);
+    ParticleStore store;
+    fixtures::add_uniform_particles(store, box.hi, 200, 7);
+    NeighbourList list(1.12, 0.38);
+    CellList cells;
+    cells.setup(grid.lo(), grid.hi(), list.list_cutoff(), list.list_cutoff());
+    std::vector<std::uint32_t> order;
+    cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
+    std::reverse(order.begin(), order.end());  // descending cells
+    store.permute_owned(order);
+    decomp::HaloExchange halo;
+    halo.build(store, grid, list.list_cutoff(), kPosition | kId);
+    cells.bin(store.position.data(), store.size());
+    EXPECT_THROW(list.build(store, cells), std::logic_error);
+    // Sorted again, the same particles build.
+    cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
+    store.permute_owned(order);
+    halo.build(store, grid, list.list_cutoff(), kPosition | kId);
+    cells.bin(store.position.data(), store.size());
+    EXPECT_NO_THROW(list.build(store, cells));
+}
