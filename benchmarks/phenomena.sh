@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Runs scenes and checks that each shows its emergent phenomenon (scripts/check_phenomenon states
+# the criteria): one command, one log per run, a verdict per scene printed last.
+#
+# usage: benchmarks/phenomena.sh [SCENE...] [--seed S] [--preset P] [--ranks R] [--out DIR]
+#                                [--set KEY=VALUE ...]
+#   SCENE: taylor-couette, rayleigh-benard, rotating-drum (default: all three)
+#   --preset: default small (the preset that shows the phenomenon on a 2-core machine)
+#   --ranks: MPI ranks per run (default 2); --out: default /tmp/emergent_phenomena
+#   --seed, --set: passed to the scene (a control run sets what must make the check fail, e.g.
+#   --set omega=0 for the drum)
+# Each run goes to OUT/SCENE_seedS (OUT/SCENE without --seed): the run's own output, run.log
+# (the command, commit, machine, the engine's progress lines) and check.log (what the check
+# measured and its verdict).
+# Exit: 0 every phenomenon shown, 1 some check failed, 2 a run or the input failed.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+scenes=() seed="" preset=small ranks=2 out=/tmp/emergent_phenomena sets=()
+known="taylor-couette rayleigh-benard rotating-drum"
+while [ $# -gt 0 ]; do
+  case $1 in
+    --seed) seed=${2:?--seed needs a value}; shift 2 ;;
+    --preset) preset=${2:?--preset needs a value}; shift 2 ;;
+    --ranks) ranks=${2:?--ranks needs a value}; shift 2 ;;
+    --out) out=${2:?--out needs a value}; shift 2 ;;
+    --set) sets+=(--set "${2:?--set needs KEY=VALUE}"); shift 2 ;;
+    -*) echo "phenomena.sh: unknown option $1" >&2; exit 2 ;;
+    *) case " $known " in
+         *" $1 "*) scenes+=("$1"); shift ;;
+         *) echo "phenomena.sh: no phenomenon criterion for scene '$1' (known: $known)" >&2; exit 2 ;;
+       esac ;;
+  esac
+done
+[ ${#scenes[@]} -eq 0 ] && read -r -a scenes <<<"$known"
+case $ranks in ''|*[!0-9]*|0) echo "phenomena.sh: --ranks must be a positive integer" >&2; exit 2 ;; esac
+exe=${EMERGENT_EXE:-$PWD/build/bin/emergent}
+[ -x "$exe" ] || { echo "phenomena.sh: $exe not built (bash scripts/build)" >&2; exit 2; }
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mkdir -p "$out" || exit 2
+
+status=0
+verdicts=()
+for scene in "${scenes[@]}"; do
+  dir=$out/$scene${seed:+_seed$seed}
+  mkdir -p "$dir" || exit 2
+  args=(run "$scene" --preset "$preset" ${seed:+--set seed=$seed} "${sets[@]}" -o "$dir")
+  {
+    echo "# command: mpirun -np $ranks emergent ${args[*]}"
+    echo "# commit: $(git rev-parse --short HEAD 2>/dev/null)$(git diff --quiet HEAD 2>/dev/null || echo ' (modified)')"
+    echo "# machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1); $(date -u +%FT%TZ)"
+  } >"$dir/run.log"
+  start=$(date +%s)
+  mpirun -q --oversubscribe -np "$ranks" "$exe" "${args[@]}" >>"$dir/run.log" 2>&1
+  rc=$?
+  echo "# exit $rc after $(( $(date +%s) - start )) s" >>"$dir/run.log"
+  if [ $rc -ne 0 ]; then
+    verdicts+=("ERROR: $scene: the run failed (exit $rc; $dir/run.log)")
+    status=2
+    continue
+  fi
+  scripts/check_phenomenon "$dir" >"$dir/check.log" 2>&1
+  rc=$?
+  cat "$dir/check.log"
+  verdict=$(tail -n 1 "$dir/check.log")
+  case $rc in
+    0) ;;
+    1) [ $status -eq 0 ] && status=1 ;;
+    *) status=2; verdict="ERROR: $scene: $verdict" ;;
+  esac
+  verdicts+=("$verdict (seed ${seed:-preset}, $dir)")
+done
+printf '%s\n' "${verdicts[@]}"
+exit $status
