@@ -10,8 +10,8 @@
 #   --seed, --set: passed to the scene (a control run sets what must make the check fail, e.g.
 #   --set omega=0 for the drum)
 # Each run goes to OUT/SCENE_seedS (OUT/SCENE without --seed): the run's own output, run.log
-# (the command, commit, machine, the engine's progress lines) and check.log (what the check
-# measured and its verdict).
+# (the command, machine, the engine's progress lines) and check.log (the build's commit, what
+# the check measured and its verdict).
 # Exit: 0 every phenomenon shown, 1 some check failed, 2 a run or the input failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
@@ -46,7 +46,6 @@ for scene in "${scenes[@]}"; do
   args=(run "$scene" --preset "$preset" ${seed:+--set seed=$seed} "${sets[@]}" -o "$dir")
   {
     echo "# command: mpirun -np $ranks emergent ${args[*]}"
-    echo "# commit: $(git rev-parse --short HEAD 2>/dev/null)$(git diff --quiet HEAD 2>/dev/null || echo ' (modified)')"
     echo "# machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1); $(date -u +%FT%TZ)"
   } >"$dir/run.log"
   start=$(date +%s)
