@@ -2,6 +2,7 @@
 // Parameter schemas (name, type, default, unit, range) and the resolved configuration of a run.
 #pragma once
 
+#include <initializer_list>
 #include <limits>
 #include <map>
 #include <string>
@@ -12,6 +13,13 @@
 namespace emergent {
 
 enum class ParamType { Integer, Real, Text, Choice };
+
+/// Whether a parameter may change when a run continues from a checkpoint.
+/// Structural: it shapes what the checkpoint holds (geometry, particle count, species, field
+/// grids, the scene's structure); a continued run refuses a new value. Adjustable: dt, skin,
+/// integrator, thermostat, interaction strengths, driving, run control: a continued run takes
+/// the new value and says so. Unmarked parameters (e.g. an older plugin's) count as structural.
+enum class RestartRule { Unmarked, Structural, Adjustable };
 
 /// One parameter a scene (or the engine) accepts.
 struct ParamSpec {
@@ -24,6 +32,7 @@ struct ParamSpec {
     double max = std::numeric_limits<double>::infinity();
     bool min_exclusive = false;  ///< true: value must be > min rather than >= min
     std::vector<std::string> choices;
+    RestartRule restart = RestartRule::Unmarked;
 
     /// Throws InputError naming `scene` and this parameter if `value` is not acceptable.
     void validate(const std::string& scene, const std::string& value) const;
@@ -43,6 +52,9 @@ public:
                    const std::vector<std::string>& choices, const std::string& help);
     /// Changes the default of an existing parameter (a scene adapting an engine parameter).
     Schema& set_default(const std::string& name, const std::string& def);
+    /// Marks parameters (already added) for continued runs: see RestartRule.
+    Schema& structural(std::initializer_list<const char*> names);
+    Schema& adjustable(std::initializer_list<const char*> names);
 
     const ParamSpec* find(const std::string& name) const;
     const std::vector<ParamSpec>& params() const { return params_; }
@@ -69,9 +81,18 @@ private:
     std::map<std::string, std::string> values_;
 };
 
-/// Reads `key = value` lines of an INI file; `[section]` prefixes keys as `section.key`;
-/// '#' and ';' start comments. Throws InputError with file and line on any malformed line.
-std::map<std::string, std::string> read_ini(const std::string& path);
+/// One `key = value` of a configuration source, with where it came from (for error messages:
+/// " at FILE:LINE" for INI files, "" for the command line).
+struct Assignment {
+    std::string key, value, origin;
+};
+
+/// Reads `key = value` lines of an INI file, in file order. `[section]` prefixes the keys after
+/// it as `section.key`. A comment starts at '#' or ';' at the start of a line or after white
+/// space; a '#' or ';' inside a word belongs to the value (`name = a#b` is "a#b";
+/// `name = a #b` is "a"). Throws InputError naming the file and line for a malformed line and
+/// for a key given twice in one file.
+std::vector<Assignment> read_ini(const std::string& path);
 
 /// Splits "key=value"; throws InputError for anything else.
 std::pair<std::string, std::string> split_assignment(const std::string& text);

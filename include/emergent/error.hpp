@@ -1,5 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The two kinds of failure: bad user input (collective) and rank-local faults (abort).
+// How a run fails: bad user input, an unstable run, a rank-local fault, a failed file operation.
+// main() turns each into one line and an exit code:
+//   0 success; 2 bad input (InputError, a bad command line); 3 run-time fault (InstabilityError,
+//   RuntimeFault, out of memory, any other internal error); 4 I/O failure (IoError).
 #pragma once
 
 #include <stdexcept>
@@ -20,6 +23,21 @@ class InstabilityError : public std::runtime_error {
 public:
     explicit InstabilityError(const std::string& what) : std::runtime_error(what) {}
 };
+
+/// A file could not be written or read back while the run was going (disk full, permissions,
+/// an HDF5 write failing). Unreadable *input* files (config, checkpoint) are InputErrors.
+class IoError : public std::runtime_error {
+public:
+    explicit IoError(const std::string& what) : std::runtime_error(what) {}
+};
+
+/// Exit codes of the `emergent` command (documented in README.md, "Exit codes").
+namespace exit_code {
+inline constexpr int ok = 0;
+inline constexpr int bad_input = 2;
+inline constexpr int run_fault = 3;
+inline constexpr int io_failure = 4;
+}  // namespace exit_code
 
 /// A fault that may be seen by one rank only (particle lost, non-finite state). main() prints
 /// it with the rank and the place that raised it, then aborts all ranks.

@@ -18,6 +18,13 @@ class Simulation;
 /// Named values a scene records (a scalar is a vector of one), into /observables/<name>.
 using Measures = std::vector<std::pair<std::string, std::vector<double>>>;
 
+/// How many particles a scene will place (spheres of rigid bodies included), and the
+/// parameters that set the number ("n_cells=40"), known from the configuration alone.
+struct ParticleEstimate {
+    double count = -1;   ///< -1: the scene cannot tell before placing them
+    std::string set_by;  ///< the parameters to name when the run is too large
+};
+
 /// A scene: composes engine parts into one physical system. It holds only what is special to
 /// it; integration, neighbour search, decomposition and output belong to the engine.
 class Problem {
@@ -28,6 +35,9 @@ public:
     virtual void build(Simulation& sim) = 0;
     /// Adds the initial particles (not called when a run continues from a checkpoint).
     virtual void place_particles(Simulation& sim) = 0;
+    /// The particle count place_particles() will reach, asked after build() so that a run too
+    /// large for the machine is refused before anything is allocated.
+    virtual ParticleEstimate expected_particles(const Simulation& /*sim*/) const { return {}; }
     /// Grids the scene coarse-grains on, besides the run's `fields.grid` box grid.
     virtual std::vector<FieldGrid> field_grids(const Simulation& /*sim*/) const { return {}; }
     /// The scene's own measures at a sample step. Collective: the values must be the same on
@@ -77,11 +87,13 @@ private:
 Schema run_schema();
 
 /// Resolves a run's parameters, later sources overriding earlier ones: schema defaults, then
-/// the preset, then each INI file, then each `key=value`. Unknown keys and invalid values
-/// throw InputError naming the scene and the key.
+/// `base` (a checkpoint's parameters, for a continued run), then the preset, then each INI
+/// file, then each `key=value`. Unknown keys and invalid values throw InputError naming the
+/// scene, the key and where it was set (file and line).
 Config resolve_config(const ProblemInfo& info, const std::string& preset,
                       const std::vector<std::string>& ini_files,
-                      const std::vector<std::string>& assignments);
+                      const std::vector<std::string>& assignments,
+                      const std::map<std::string, std::string>& base = {});
 
 }  // namespace emergent
 

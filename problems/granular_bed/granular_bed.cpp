@@ -44,6 +44,12 @@ public:
                                                    2 * c_.real("gamma_s"), c_.real("mu")}));
     }
 
+    ParticleEstimate expected_particles(const Simulation&) const override {
+        const double sites = double(c_.integer("nx")) * double(c_.integer("ny")) * double(c_.integer("nz"));
+        return {sites * (tetrahedron_ < 0 ? 1 : 4), "nx=" + c_.text("nx") + ", ny=" + c_.text("ny") +
+                                                        ", nz=" + c_.text("nz")};
+    }
+
     void place_particles(Simulation& sim) override {
         const double a = c_.real("spacing"), d = c_.real("diameter");
         const auto seed = static_cast<std::uint64_t>(c_.integer("seed"));
@@ -95,6 +101,9 @@ ProblemInfo granular_bed_info() {
         .real("arm", 0.6, 0, 100, "sigma", "tetrahedra: distance of each sphere from the centre", true)
         .choice("kernel", "specialised", {"specialised", "generic"},
                 "specialised: unused contact features compiled out; generic: all compiled in");
+    // Continued runs keep the bed's structure; contact law, gravity and kernel may change.
+    info.schema.structural({"nx", "ny", "nz", "spacing", "height", "diameter", "mass", "particles", "arm"})
+        .adjustable({"k_n", "gamma_n", "gamma_s", "mu", "gravity", "temperature", "kernel"});
     info.presets["tiny"] = {{"nx", "6"}, {"ny", "6"}, {"nz", "4"}, {"equilibration_steps", "500"},
                             {"steps", "500"}, {"sample_every", "100"}};
     info.presets["tiny-tetrahedra"] = {{"nx", "4"}, {"ny", "4"}, {"nz", "3"}, {"spacing", "2.5"},

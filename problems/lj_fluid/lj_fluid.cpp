@@ -38,6 +38,11 @@ public:
                 make_bussi_thermostat(temperature, config_.real("thermostat_tau"), seed + 1));
     }
 
+    ParticleEstimate expected_particles(const Simulation&) const override {
+        const double n = double(config_.integer("n_cells"));
+        return {4 * n * n * n, "n_cells=" + config_.text("n_cells")};
+    }
+
     void place_particles(Simulation& sim) override {
         const int cells = static_cast<int>(config_.integer("n_cells"));
         const double a = sim.box().length().x / cells;
@@ -87,6 +92,8 @@ ProblemInfo lj_fluid_info() {
                 "specialised: unused features compiled out; generic: species table, pair "
                 "damping (zero), energy every step, a zero field and an unreached wall, all "
                 "evaluated (for benchmarks/specialisation_cost.sh)");
+    info.schema.structural({"n_cells", "density", "lattice"})
+        .adjustable({"temperature", "thermostat", "thermostat_tau", "cutoff", "kernel"});
     info.presets["tiny"] = {{"n_cells", "4"}, {"equilibration_steps", "200"}, {"steps", "200"},
                             {"sample_every", "20"}};
     info.presets["small"] = {{"n_cells", "10"}, {"equilibration_steps", "2000"},

@@ -37,6 +37,12 @@ public:
             make_thermal_wall(WallShape::plane(2, height_, -1), kT, seed + 22, top_motion));
     }
 
+    ParticleEstimate expected_particles(const Simulation&) const override {
+        return {config_.real("density") * width_ * width_ * height_,
+                "density=" + config_.text("density") + ", width=" + config_.text("width") +
+                    ", height=" + config_.text("height")};
+    }
+
     void place_particles(Simulation& sim) override {
         fill_wall_bounded_layer(sim, width_, width_, height_, config_.real("density"));
         const double t0 = config_.real("initial_temperature");
@@ -154,6 +160,8 @@ ProblemInfo planar_couette_info() {
         .integer("slabs", 20, 4, 100000, "1", "slabs of the flow profile across the channel");
     // Field frames carry the analysis: every run of this scene needs them.
     info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10");
+    info.schema.structural({"width", "height", "density", "slabs"})
+        .adjustable({"wall_temperature", "initial_temperature", "wall_speed"});
     info.presets["tiny"] = {{"width", "8"}, {"height", "10"}, {"equilibration_steps", "400"},
                             {"steps", "1600"}, {"sample_every", "400"}, {"fields.interval", "400"},
                             {"slabs", "10"}};

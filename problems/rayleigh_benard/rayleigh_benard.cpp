@@ -59,6 +59,12 @@ public:
         }
     }
 
+    ParticleEstimate expected_particles(const Simulation&) const override {
+        return {config_.real("density") * lx_ * ly_ * lz_,
+                "density=" + config_.text("density") + ", width_x=" + config_.text("width_x") +
+                    ", width_y=" + config_.text("width_y") + ", height=" + config_.text("height")};
+    }
+
     void place_particles(Simulation& sim) override {
         fill_wall_bounded_layer(sim, lx_, ly_, lz_, config_.real("density"));
         // Start from the conduction profile, T falling linearly from the hot to the cold wall.
@@ -291,6 +297,12 @@ ProblemInfo rayleigh_benard_info() {
     // benchmarks/RESULTS.md).
     info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10")
         .set_default("skin", "0.8");
+    // The slice, profile and cell-record sizes shape the recorded series: structural. The walls'
+    // temperatures and gravity drive the layer and may change (hysteresis runs).
+    info.schema.structural({"width_x", "width_y", "height", "density", "slice_height", "slice_thickness",
+                            "slice_cell", "profile_slabs", "max_cells"})
+        .adjustable({"t_hot", "t_cold", "gravity_scale", "layer_thickness", "layer_period",
+                     "noise_amplitude", "noise_wavelength", "conduction_flux", "centre_smoothing"});
     info.presets["tiny"] = {{"width_x", "12"}, {"width_y", "12"}, {"height", "10"},
                             {"equilibration_steps", "0"}, {"steps", "400"},
                             {"sample_every", "100"}, {"fields.interval", "200"},

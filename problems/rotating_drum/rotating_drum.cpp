@@ -169,6 +169,14 @@ public:
         }
     }
 
+    ParticleEstimate expected_particles(const Simulation&) const override {
+        const std::string by = c_.integer("bodies") > 0
+                                   ? "bodies=" + c_.text("bodies")
+                                   : "fill=" + c_.text("fill") + ", diameter=" + c_.text("diameter") +
+                                         ", length=" + c_.text("length");
+        return {4.0 * double(body_count()), by};
+    }
+
     Measures measures(Simulation& sim) override {
         const ParticleStore& b = sim.bodies();
         const std::size_t n = b.n_owned();
@@ -289,6 +297,13 @@ ProblemInfo rotating_drum_info() {
         .integer("radial_shells", 20, 1, 1e6, "1", "shells about the axis for species fractions");
     info.schema.set_default("guard.max_force", "1e5");
     // About 6300 steps per revolution at omega 0.2 (paper: ~6400).
+    // omega is structural: the rough wall's lattice turns through omega t, so a new omega would
+    // jump the wall spheres through the bed.
+    info.schema.structural({"diameter", "length", "omega", "bodies", "fill", "bed_density", "big_fraction",
+                            "arm_small", "arm_big", "sphere_diameter", "sphere_mass", "wall_spacing",
+                            "wall_sphere_diameter", "end_caps", "axial_slices", "radial_shells"})
+        .adjustable({"gravity", "k_n", "gamma_n", "gamma_s_big", "gamma_s_small", "gamma_s_mixed",
+                     "gamma_s_wall", "mu_max", "cap_gamma_n", "initial_speed"});
     info.presets["tiny"] = {{"diameter", "16"}, {"length", "12"}, {"bodies", "60"}, {"steps", "1000"},
                             {"sample_every", "100"}, {"axial_slices", "4"}, {"radial_shells", "4"}};
     info.presets["small"] = {{"diameter", "50"}, {"length", "24"}, {"bodies", "2600"},

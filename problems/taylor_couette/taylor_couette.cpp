@@ -26,6 +26,17 @@ public:
           length_(c.real("length")), omega_(c.real("omega")),
           wedge_n_(static_cast<int>(c.integer("wedge"))),
           periodic_ends_(c.text("ends") == "periodic") {
+        if (wedge_n_ >= 2) {
+            // The images of one turn must cover the ghost shell: the wedge must be at least
+            // cutoff + skin wide at the inner cylinder (a narrower one needs images of images).
+            const double alpha = kTwoPi / wedge_n_, shell = std::pow(2.0, 1.0 / 6.0) + c.real("skin");
+            const double width = r_i_ * std::sin(std::min(alpha, 0.25 * kTwoPi));
+            if (width < shell)
+                throw InputError(c.scene() + ": wedge=" + c.text("wedge") + " is " +
+                                 std::to_string(width) + " wide at r_inner=" + c.text("r_inner") +
+                                 ", narrower than the interaction range cutoff + skin = " +
+                                 std::to_string(shell) + ": use a smaller wedge count");
+        }
         const double nu = c.real("kinematic_viscosity");
         const double eta = r_i_ / r_o_, d = r_o_ - r_i_;
         reynolds_ = omega_ * r_i_ * d / nu;
@@ -127,6 +138,13 @@ public:
                 s.velocity[i] += Vec3{-v * x.y / r, v * x.x / r, 0};
             }
         }
+    }
+
+    ParticleEstimate expected_particles(const Simulation& sim) const override {
+        const double angle = sim.box().wedge.active() ? sim.box().wedge.angle() : kTwoPi;
+        return {config_.real("density") * 0.5 * angle * (r_o_ * r_o_ - r_i_ * r_i_) * length_,
+                "density=" + config_.text("density") + ", r_inner=" + config_.text("r_inner") +
+                    ", gap=" + config_.text("gap") + ", length=" + config_.text("length")};
     }
 
     std::vector<FieldGrid> field_grids(const Simulation&) const override {
@@ -277,6 +295,13 @@ ProblemInfo taylor_couette_info() {
     // than the engine's 0.3 in the small system (skin sweep in benchmarks/RESULTS.md).
     info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10")
         .set_default("skin", "0.7");
+    // The inner cylinder's speed (smooth thermal wall) may change between segments; the
+    // geometry and the flow grid may not.
+    info.schema.structural({"r_inner", "gap", "length", "density", "wedge", "ends", "flow_cells_r",
+                            "flow_cells_z"})
+        .adjustable({"omega", "spin_up_time", "spin_up_omega", "spin_up_ramp", "wall_temperature",
+                     "initial_temperature", "initial_flow", "kinematic_viscosity",
+                     "critical_reynolds", "velocity_sample_inefficiency"});
     info.presets["tiny"] = {{"r_inner", "10"}, {"gap", "5"}, {"length", "10"}, {"omega", "0.2"},
                             {"equilibration_steps", "0"}, {"steps", "400"},
                             {"sample_every", "100"}, {"fields.interval", "200"},

@@ -4,14 +4,18 @@
 
 #include <boost/program_options.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
+#include "app/failure_report.hpp"
+#include "app/restart_changes.hpp"
 #include "app/run.hpp"
 #include "emergent/error.hpp"
 #include "emergent/plugin.hpp"
 #include "emergent/problem.hpp"
 #include "io/checkpoint.hpp"
+#include "io/h5.hpp"
 
 namespace po = boost::program_options;
 using namespace emergent;
@@ -72,10 +76,12 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
     auto list = [&](const char* key) {
         return vm.count(key) ? vm[key].as<std::vector<std::string>>() : std::vector<std::string>{};
     };
-    std::vector<std::string> sets;
+    std::vector<std::string> sets = list("set");
     io::CheckpointHeader checkpoint;
     app::RunRequest req;
     req.restart_file = vm["restart"].as<std::string>();
+    req.output_dir = vm["output"].as<std::string>();
+    req.summary_json = vm["summary-json"].as<std::string>();
     std::string scene = vm.count("scene") ? vm["scene"].as<std::string>() : "";
     if (!req.restart_file.empty()) {
         checkpoint = io::read_checkpoint_header(req.restart_file, comm);
@@ -86,25 +92,30 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
             throw InputError("--restart: a continued run takes its parameters from the "
                              "checkpoint; --preset cannot be combined with it");
         scene = checkpoint.scene;
-        // The checkpoint's parameters first; --config and --set may then change e.g. steps.
-        for (const auto& [k, v] : checkpoint.config) sets.push_back(k + "=" + v);
         req.restart = &checkpoint;
+        // Without -o, a continued run writes beside its checkpoint (the run it continues).
+        if (req.output_dir.empty())
+            req.output_dir = std::filesystem::path(req.restart_file).parent_path().string();
+        if (req.output_dir.empty()) req.output_dir = ".";
     }
     if (scene.empty()) throw InputError("run: no scene given (see: emergent list)");
     req.problem = &find_scene(scene);
-    std::vector<std::string> files = list("config");
-    if (req.restart) {
-        // INI files apply after the checkpoint's values: fold them in as assignments.
-        for (const auto& f : files)
-            for (const auto& [k, v] : read_ini(f)) sets.push_back(k + "=" + v);
-        files.clear();
-    }
-    for (const auto& a : list("set")) sets.push_back(a);
     if (vm.count("checkpoint-every"))
         sets.push_back("checkpoint_every=" + std::to_string(vm["checkpoint-every"].as<long long>()));
-    req.config = resolve_config(*req.problem, vm["preset"].as<std::string>(), files, sets);
-    req.output_dir = vm["output"].as<std::string>();
-    req.summary_json = vm["summary-json"].as<std::string>();
+    // A continued run starts from the checkpoint's parameters; --config and --set change them.
+    req.config = resolve_config(*req.problem, vm["preset"].as<std::string>(), list("config"), sets,
+                                checkpoint.config);
+    if (req.restart) {
+        const long long end = req.config.integer("equilibration_steps") + req.config.integer("steps");
+        if (end < checkpoint.step)
+            throw InputError("--restart: the run would end at step " + std::to_string(end) +
+                             " (equilibration_steps + steps), before the checkpoint's step " +
+                             std::to_string(checkpoint.step) + ": raise steps");
+        const std::string changes = app::restart_changes(*req.problem, checkpoint.config, req.config);
+        int rank = 0;
+        MPI_Comm_rank(comm, &rank);
+        if (rank == 0 && !changes.empty()) std::printf("emergent: %s\n", changes.c_str());
+    }
     app::run_problem(req, comm);
     return 0;
 }
@@ -144,29 +155,46 @@ int dispatch(int argc, char** argv, MPI_Comm comm, int rank) {
 
 int main(int argc, char** argv) {
     MPI_Init(&argc, &argv);
+    io::silence_h5_error_stack();
+    // Failures meet on a communicator of their own (app/failure_report.hpp).
+    MPI_Comm errors;
+    MPI_Comm_dup(MPI_COMM_WORLD, &errors);
     int rank = 0;
     MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    int code = 0;
+    int code = exit_code::ok;
+    std::string line;
+    bool rank_local = false;
     try {
         code = dispatch(argc, argv, MPI_COMM_WORLD, rank);
     } catch (const RuntimeFault& e) {
         // Seen by this rank only: the others may be waiting in a collective, so abort them.
-        std::fprintf(stderr, "emergent: error on rank %d: %s [%s]\n", rank, e.what(), e.where());
-        std::fflush(stderr);
-        int size = 1;
-        MPI_Comm_size(MPI_COMM_WORLD, &size);
-        if (size > 1) MPI_Abort(MPI_COMM_WORLD, 3);
-        code = 3;
+        line = "emergent: error on rank " + std::to_string(rank) + ": " + e.what() + " [" +
+               e.where() + "]";
+        code = exit_code::run_fault;
+        rank_local = true;
     } catch (const InstabilityError& e) {
-        if (rank == 0) std::fprintf(stderr, "emergent: run stopped: %s\n", e.what());
-        code = 3;
+        line = std::string("emergent: run stopped: ") + e.what();
+        code = exit_code::run_fault;
     } catch (const po::error& e) {
-        if (rank == 0) std::fprintf(stderr, "emergent: error: %s\n", e.what());
-        code = 2;
+        line = std::string("emergent: error: ") + e.what();
+        code = exit_code::bad_input;
     } catch (const InputError& e) {
-        if (rank == 0) std::fprintf(stderr, "emergent: error: %s\n", e.what());
-        code = 2;
+        line = std::string("emergent: error: ") + e.what();
+        code = exit_code::bad_input;
+    } catch (const IoError& e) {
+        line = std::string("emergent: I/O error: ") + e.what();
+        code = exit_code::io_failure;
+    } catch (const std::bad_alloc&) {
+        line = "emergent: out of memory (lower the particle count or use more ranks or nodes)";
+        code = exit_code::run_fault;
+    } catch (const std::exception& e) {
+        line = std::string("emergent: internal error: ") + e.what();
+        code = exit_code::run_fault;
+    } catch (...) {
+        line = "emergent: internal error: unknown exception";
+        code = exit_code::run_fault;
     }
+    if (code != exit_code::ok) code = app::report_failure(errors, code, line, rank_local);
     MPI_Finalize();
     return code;
 }

@@ -15,6 +15,7 @@
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
 #include "io/run_output.hpp"
+#include "app/memory_check.hpp"
 #include "app/run_guard.hpp"
 #include "app/run_summary.hpp"
 
@@ -103,6 +104,23 @@ void prepare_output_dir(const std::string& dir, MPI_Comm comm) {
     if (failed) throw InputError("cannot create output directory '" + dir + "'");
 }
 
+/// The summary file must be writable before the run spends its time: a run that cannot report
+/// is refused at the start.
+void check_summary_path(const std::string& path, MPI_Comm comm) {
+    if (path.empty()) return;
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    int failed = 0;
+    if (rank == 0) {
+        const std::string probe = path + ".tmp";
+        std::FILE* f = std::fopen(probe.c_str(), "w");
+        failed = f == nullptr;
+        if (f) std::fclose(f), std::remove(probe.c_str());
+    }
+    MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
+    if (failed) throw InputError("--summary-json: cannot write '" + path + "'");
+}
+
 /// Steps from wherever the simulation is to the end of the run. Steps are counted globally
 /// (0 .. n_eq + n_steps), so a continued run takes the same sampling, output and checkpoint
 /// decisions as an uninterrupted one. Returns the wall time of the measured phase.
@@ -163,10 +181,21 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     if (cfg.integer("checkpoint_every") > 0 && req.output_dir.empty())
         throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
     prepare_output_dir(req.output_dir, comm);
+    check_summary_path(req.summary_json, comm);
 
     Simulation sim(comm, run_settings(cfg));
     auto problem = req.problem->factory(cfg);
     problem->build(sim);
+    // Too large for the nodes' memory: refused before particles and grids are allocated.
+    std::vector<FieldGrid> grids;  // allocated only when fields are recorded
+    if (cfg.integer("fields.interval") > 0 && !req.output_dir.empty()) {
+        grids = problem->field_grids(sim);
+        grids.push_back(io::parse_box_grid(cfg.scene(), cfg.text("fields.grid"), sim.box()));
+    }
+    const ParticleEstimate estimate =
+        req.restart ? ParticleEstimate{double(req.restart->n_global), "the checkpoint's particles"}
+                    : problem->expected_particles(sim);
+    check_memory(comm, cfg.scene(), std::max(0.0, estimate.count), estimate.set_by, grids);
     std::vector<ThermoSample> series;  // samples of the measured phase
     if (req.restart) {
         io::restore_checkpoint(req.restart_file, sim, *req.restart);
@@ -177,6 +206,15 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         series = req.restart->series;
     } else {
         problem->place_particles(sim);
+        // Bodies place their spheres only at initialise(): count the bodies meanwhile.
+        const long long placed = decomp::sum(
+            comm, static_cast<long long>(sim.particles().n_owned() +
+                                         (sim.has_bodies() ? sim.bodies().n_owned() : 0)));
+        if (placed == 0)
+            throw InputError(cfg.scene() + ": these parameters place no particles" +
+                             (estimate.set_by.empty() ? "" : " (" + estimate.set_by + ")"));
+        // A scene that could not tell its count beforehand is checked before lists and ghosts.
+        if (estimate.count < 0) check_memory(comm, cfg.scene(), double(placed), "", grids);
         sim.initialise();
     }
     io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim), problem.get());

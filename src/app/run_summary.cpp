@@ -66,8 +66,8 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     field("ranks", std::to_string(sim.n_ranks()));
     field("grid", "\"" + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
                       std::to_string(dims.z) + "\"");
-    field("steps", cfg.text("steps"));
-    field("equilibration_steps", cfg.text("equilibration_steps"));
+    field("steps", std::to_string(cfg.integer("steps")));
+    field("equilibration_steps", std::to_string(cfg.integer("equilibration_steps")));
     field("dt", number(sim.dt()));
     field("wall_seconds", number(wall));
     field("atom_steps_per_second", number(wall > 0 ? n * timed_steps / wall : 0));

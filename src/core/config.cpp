@@ -43,12 +43,36 @@ std::string number_text(double v) {
 }
 }  // namespace
 
+namespace {
+/// A decimal number: [+-] digits [. digits] [e [+-] digits], with digits on at least one side
+/// of the point. strtod alone also takes hexadecimal ("0x64"), "inf" and "nan", which would
+/// reach output files as text.
+bool is_decimal(const std::string& t) {
+    std::size_t k = 0, digits = 0;
+    auto run = [&] {
+        std::size_t n = 0;
+        while (k < t.size() && t[k] >= '0' && t[k] <= '9') ++k, ++n;
+        return n;
+    };
+    if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
+    digits += run();
+    if (k < t.size() && t[k] == '.') ++k, digits += run();
+    if (digits == 0) return false;
+    if (k < t.size() && (t[k] == 'e' || t[k] == 'E')) {
+        ++k;
+        if (k < t.size() && (t[k] == '+' || t[k] == '-')) ++k;
+        if (run() == 0) return false;
+    }
+    return k == t.size();
+}
+}  // namespace
+
 double parse_number(const std::string& what, const std::string& text) {
     const char* s = text.c_str();
     char* end = nullptr;
     errno = 0;
-    const double v = std::strtod(s, &end);
-    if (text.empty() || end != s + text.size() || errno == ERANGE || !std::isfinite(v))
+    const double v = is_decimal(text) ? std::strtod(s, &end) : 0.0;
+    if (!is_decimal(text) || end != s + text.size() || errno == ERANGE || !std::isfinite(v))
         throw InputError(what + "='" + text + "' is not a number");
     return v;
 }
@@ -143,6 +167,27 @@ Schema& Schema::set_default(const std::string& name, const std::string& def) {
     throw std::logic_error("set_default: no parameter " + name);
 }
 
+namespace {
+void mark(std::vector<ParamSpec>& params, std::initializer_list<const char*> names, RestartRule rule) {
+    for (const char* name : names) {
+        bool found = false;
+        for (auto& p : params)
+            if (p.name == name) p.restart = rule, found = true;
+        if (!found) throw std::logic_error(std::string("restart rule for unknown parameter ") + name);
+    }
+}
+}  // namespace
+
+Schema& Schema::structural(std::initializer_list<const char*> names) {
+    mark(params_, names, RestartRule::Structural);
+    return *this;
+}
+
+Schema& Schema::adjustable(std::initializer_list<const char*> names) {
+    mark(params_, names, RestartRule::Adjustable);
+    return *this;
+}
+
 const ParamSpec* Schema::find(const std::string& name) const {
     for (const auto& p : params_)
         if (p.name == name) return &p;
@@ -163,14 +208,24 @@ const std::string& Config::text(const std::string& name) const {
     return it->second;
 }
 
-std::map<std::string, std::string> read_ini(const std::string& path) {
+namespace {
+/// The line without its comment: from a '#' or ';' that starts the line or follows white space.
+std::string strip_comment(const std::string& line) {
+    for (std::size_t k = 0; k < line.size(); ++k)
+        if ((line[k] == '#' || line[k] == ';') && (k == 0 || line[k - 1] == ' ' || line[k - 1] == '\t'))
+            return line.substr(0, k);
+    return line;
+}
+}  // namespace
+
+std::vector<Assignment> read_ini(const std::string& path) {
     std::ifstream in(path);
     if (!in) throw InputError("cannot read config file '" + path + "'");
-    std::map<std::string, std::string> values;
+    std::vector<Assignment> entries;
+    std::map<std::string, int> first_line;
     std::string line, section;
     for (int number = 1; std::getline(in, line); ++number) {
-        const auto comment = line.find_first_of("#;");
-        line = trim(comment == std::string::npos ? line : line.substr(0, comment));
+        line = trim(strip_comment(line));
         if (line.empty()) continue;
         const std::string where = path + ":" + std::to_string(number);
         if (line.front() == '[') {
@@ -182,10 +237,15 @@ std::map<std::string, std::string> read_ini(const std::string& path) {
         const auto eq = line.find('=');
         if (eq == std::string::npos || trim(line.substr(0, eq)).empty())
             throw InputError(where + ": expected 'key = value', got '" + line + "'");
-        values[section + trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
+        const std::string key = section + trim(line.substr(0, eq));
+        const auto [it, fresh] = first_line.emplace(key, number);
+        if (!fresh)
+            throw InputError(where + ": '" + key + "' is set twice (first at line " +
+                             std::to_string(it->second) + ")");
+        entries.push_back({key, trim(line.substr(eq + 1)), " at " + where});
     }
     if (in.bad()) throw InputError("cannot read config file '" + path + "'");
-    return values;
+    return entries;
 }
 
 }  // namespace emergent

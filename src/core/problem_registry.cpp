@@ -82,12 +82,20 @@ Schema run_schema() {
                  "steps between particle frames in trajectory.h5 (0: first and last frame only)")
         .text("output.elements", "position,velocity,species,id,image",
               "particle elements written per frame (comma-separated)");
+    // A continued run keeps its field grid; everything else here is run control.
+    s.structural({"fields.grid"})
+        .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "equilibration_steps", "steps",
+                     "sample_every", "seed", "grid", "progress_interval", "checkpoint_every",
+                     "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
+                     "guard.max_overlap", "guard.max_energy_drift", "output.every",
+                     "output.elements"});
     return s;
 }
 
 Config resolve_config(const ProblemInfo& info, const std::string& preset,
                       const std::vector<std::string>& ini_files,
-                      const std::vector<std::string>& assignments) {
+                      const std::vector<std::string>& assignments,
+                      const std::map<std::string, std::string>& base) {
     std::map<std::string, std::string> values;
     for (const auto& p : info.schema.params()) values[p.name] = p.default_value;
     auto apply = [&](const std::string& key, const std::string& value, const std::string& from) {
@@ -95,9 +103,14 @@ Config resolve_config(const ProblemInfo& info, const std::string& preset,
         if (!spec)
             throw InputError(info.name + ": unknown parameter '" + key + "'" + from +
                              " (see: emergent help " + info.name + ")");
-        spec->validate(info.name, value);
+        try {
+            spec->validate(info.name, value);
+        } catch (const InputError& e) {
+            throw InputError(e.what() + from);
+        }
         values[key] = value;
     };
+    for (const auto& [k, v] : base) apply(k, v, " in the checkpoint");
     if (!preset.empty()) {
         const auto it = info.presets.find(preset);
         if (it == info.presets.end()) {
@@ -109,7 +122,7 @@ Config resolve_config(const ProblemInfo& info, const std::string& preset,
         for (const auto& [k, v] : it->second) apply(k, v, " in preset " + preset);
     }
     for (const auto& file : ini_files)
-        for (const auto& [k, v] : read_ini(file)) apply(k, v, " in " + file);
+        for (const auto& a : read_ini(file)) apply(a.key, a.value, a.origin);
     for (const auto& a : assignments) {
         const auto [k, v] = split_assignment(a);
         apply(k, v, "");

@@ -26,11 +26,13 @@ int local_rank() {
 
 int device_count() {
     int n = 0;
-    if (cudaGetDeviceCount(&n) != cudaSuccess) {
-        cudaGetLastError();  // clear the sticky "no device" error for later calls
-        return 0;
-    }
-    return n;
+    const cudaError_t status = cudaGetDeviceCount(&n);
+    if (status == cudaSuccess) return n;
+    cudaGetLastError();  // clear the sticky error for later calls
+    // No device, or no driver (a machine that compiles CUDA but has no GPU): none present.
+    // Anything else is a broken set-up that must not read as "no GPU here".
+    if (status == cudaErrorNoDevice || status == cudaErrorInsufficientDriver) return 0;
+    throw std::runtime_error(std::string("CUDA cannot count devices: ") + cudaGetErrorString(status));
 }
 
 }  // namespace

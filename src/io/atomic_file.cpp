@@ -13,13 +13,13 @@ void write_atomically(const std::string& path, const std::string& content) {
     const std::string tmp = path + ".tmp";
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw InputError("cannot write '" + tmp + "'");
+        if (!out) throw IoError("cannot write '" + tmp + "'");
         out << content;
         out.flush();
-        if (!out) throw InputError("cannot write '" + tmp + "'");
+        if (!out) throw IoError("cannot write '" + tmp + "'");
     }
     if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw InputError("cannot rename '" + tmp + "' to '" + path + "'");
+        throw IoError("cannot rename '" + tmp + "' to '" + path + "'");
 }
 
 }  // namespace emergent::io

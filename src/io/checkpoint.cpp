@@ -29,6 +29,12 @@ std::vector<std::string> member_names(hid_t group) {
     return names;
 }
 
+/// The box as numbers: lo, hi, periodic flags, wedge images.
+std::vector<double> box_record(const Box& b) {
+    return {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z, double(b.periodic[0]),
+            double(b.periodic[1]), double(b.periodic[2]), double(b.wedge.n)};
+}
+
 std::vector<double> pack_series(const std::vector<ThermoSample>& series) {
     std::vector<double> rows;
     for (const ThermoSample& t : series)
@@ -64,6 +70,8 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         write_small_dataset(root, "series", H5T_NATIVE_DOUBLE,
                             {series.size(), static_cast<hsize_t>(kSeriesColumns)}, rows.data(),
                             comm);
+        const std::vector<double> box = box_record(sim.box());
+        write_small_dataset(root, "box", H5T_NATIVE_DOUBLE, {box.size()}, box.data(), comm);
         const std::vector<double> tallies = sim.exchange_tallies();
         write_small_dataset(root, "exchange_tallies", H5T_NATIVE_DOUBLE, {tallies.size()},
                             tallies.data(), comm);
@@ -129,10 +137,11 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
     int failed = 0;
     if (rank == 0) failed = std::rename(tmp.c_str(), path.c_str()) != 0;
     MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-    if (failed) throw InputError("cannot rename '" + tmp + "' to '" + path + "'");
+    if (failed) throw IoError("cannot rename '" + tmp + "' to '" + path + "'");
 }
 
-CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) {
+namespace {
+CheckpointHeader read_header(const std::string& path, MPI_Comm comm) {
     H5Id file = open_file(path, comm, false);
     if (!exists(file, "checkpoint")) throw InputError("'" + path + "' is not an emergent checkpoint");
     H5Id root = open_group(file, "checkpoint");
@@ -156,6 +165,7 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
             h.config[name] = read_string_attribute(params, name);
         }
     }
+    if (exists(root, "box")) h.box = read_doubles(root, "box");
     if (exists(root, "exchange_tallies")) h.exchange_tallies = read_doubles(root, "exchange_tallies");
     const std::vector<double> rows = read_doubles(root, "series");
     for (std::size_t k = 0; k < rows.size() / kSeriesColumns; ++k) {
@@ -183,11 +193,16 @@ CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) 
     return h;
 }
 
-void restore_checkpoint(const std::string& path, Simulation& sim, const CheckpointHeader& h) {
+void restore_particles(const std::string& path, Simulation& sim, const CheckpointHeader& h) {
     MPI_Comm comm = sim.comm();
     int rank = 0, n_ranks = 1;
     MPI_Comm_rank(comm, &rank);
     MPI_Comm_size(comm, &n_ranks);
+    // The scene has built its box from the run's parameters: it must be the checkpoint's
+    // (checkpoints from before the box was kept skip this).
+    if (!h.box.empty() && h.box != box_record(sim.box()))
+        throw InputError("'" + path + "': the scene's box differs from the checkpoint's (was it "
+                         "written by another version of the scene?)");
     const decomp::IdBlocks blocks{h.n_global, n_ranks};
     const long long first = blocks.first(rank);
     const auto count = static_cast<std::size_t>(blocks.first(rank + 1) - first);
@@ -270,6 +285,25 @@ void restore_checkpoint(const std::string& path, Simulation& sim, const Checkpoi
     }
     sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,
                 h.rebuilds, with_bodies ? &bodies : nullptr);
+}
+
+}  // namespace
+
+// A checkpoint that opens but fails to read is damaged input, not a failing disk of this run.
+CheckpointHeader read_checkpoint_header(const std::string& path, MPI_Comm comm) {
+    try {
+        return read_header(path, comm);
+    } catch (const IoError& e) {
+        throw InputError("'" + path + "' is a damaged checkpoint (" + e.what() + ")");
+    }
+}
+
+void restore_checkpoint(const std::string& path, Simulation& sim, const CheckpointHeader& h) {
+    try {
+        restore_particles(path, sim, h);
+    } catch (const IoError& e) {
+        throw InputError("'" + path + "' is a damaged checkpoint (" + e.what() + ")");
+    }
 }
 
 }  // namespace emergent::io

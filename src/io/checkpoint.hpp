@@ -20,6 +20,7 @@ struct CheckpointHeader {
     long long step = 0, rebuilds = 0, n_global = 0;
     double time = 0;
     int ranks = 0;                              ///< rank count that wrote it
+    std::vector<double> box;                    ///< lo, hi, periodic flags, wedge (empty: not kept)
     std::vector<ThermoSample> series;           ///< samples of the measured phase so far
     /// Field intervals in progress: grid name -> (global sums, samples).
     std::map<std::string, std::pair<std::vector<double>, long long>> fields;

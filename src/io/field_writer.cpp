@@ -87,7 +87,7 @@ FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
     : dir_(dir), stem_(stem), grids_(grids), frames_(grids.size()) {
     const std::string path = dir + "/" + stem + ".h5";
     file_ = H5Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-    if (file_ < 0) throw InputError("cannot create '" + path + "'");
+    if (file_ < 0) throw IoError("cannot create '" + path + "'");
     H5Id fields = create_group(file_, "fields");
     for (const FieldGrid& g : grids) {
         H5Id group = create_group(fields, g.name);

@@ -21,8 +21,27 @@ void H5Id::reset() {
     id_ = -1;
 }
 
+namespace {
+/// The innermost entry of HDF5's error stack (the cause, e.g. "unable to open file" or a
+/// system error), so a failure reads as one line instead of HDF5's printed stack.
+std::string innermost_h5_error() {
+    std::string cause;
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD,
+             [](unsigned, const H5E_error2_t* e, void* out) -> herr_t {
+                 auto& text = *static_cast<std::string*>(out);
+                 if (text.empty() && e->desc && *e->desc) text = e->desc;
+                 return 0;
+             },
+             &cause);
+    H5Eclear2(H5E_DEFAULT);
+    return cause.empty() ? "HDF5 call failed" : cause;
+}
+}  // namespace
+
+void silence_h5_error_stack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+
 hid_t h5_check(hid_t status, const std::string& what) {
-    if (status < 0) throw InputError(what + ": HDF5 call failed");
+    if (status < 0) throw IoError(what + ": " + innermost_h5_error());
     return status;
 }
 
@@ -56,7 +75,7 @@ void write_raw_attribute(hid_t object, const std::string& name, hid_t type, hid_
 H5Id create_file(const std::string& path, MPI_Comm comm) {
     H5Id fapl = file_access(comm);
     const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    if (f < 0) throw InputError("cannot create HDF5 file '" + path + "'");
+    if (f < 0) throw IoError("cannot create HDF5 file '" + path + "': " + innermost_h5_error());
     return H5Id(f);
 }
 

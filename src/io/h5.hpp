@@ -34,8 +34,11 @@ private:
     hid_t id_ = -1;
 };
 
-/// Throws InputError "what: HDF5 call failed" when `status` < 0; returns it otherwise.
+/// Throws IoError "what: <HDF5's innermost cause>" when `status` < 0; returns it otherwise.
 hid_t h5_check(hid_t status, const std::string& what);
+
+/// Turns off HDF5's printing of its error stack (failures become one IoError line each).
+void silence_h5_error_stack();
 
 /// Creates (truncating) or opens a file for collective access by all ranks of `comm`.
 H5Id create_file(const std::string& path, MPI_Comm comm);

@@ -29,6 +29,8 @@ FieldGrid parse_box_grid(const std::string& scene, const std::string& text, cons
     FieldGrid g;
     if (!parse_counts(text, g.n))
         throw InputError(scene + ": fields.grid=" + text + " must be NXxNYxNZ, e.g. 1x1x20");
+    if (double(g.n.x) * double(g.n.y) * double(g.n.z) > 2147483647.0)
+        throw InputError(scene + ": fields.grid=" + text + " has more than 2^31 cells");
     g.name = "box";
     g.lo = box.lo;
     g.hi = box.hi;

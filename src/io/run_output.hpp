@@ -56,4 +56,7 @@ private:
 /// Splits "a,b,c" into its items (spaces ignored); throws InputError for unknown items.
 std::vector<std::string> parse_elements(const std::string& scene, const std::string& text);
 
+/// The run's box-wide field grid from `fields.grid` ("NXxNYxNZ"); InputError naming it.
+FieldGrid parse_box_grid(const std::string& scene, const std::string& text, const Box& box);
+
 }  // namespace emergent::io

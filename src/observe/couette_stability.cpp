@@ -227,12 +227,37 @@ CouetteStability::AdmissibleMode CouetteStability::fastest_admissible_mode(doubl
                                                                            bool periodic) const {
     const double step = (periodic ? 2 : 1) * kPi / length;
     const double k_max = 4 * onset().wavenumber;  // shorter waves are strongly damped
+    const int m_max = std::max(1, static_cast<int>(k_max / step));
     AdmissibleMode best;
-    for (int m = 1; m * step <= k_max || m == 1; ++m) {
+    auto consider = [&](int m) {
         const double sigma = growth_rate(reynolds, m * step);
         if (best.index == 0 || sigma > best.growth_rate)
             best = {m, m * step, sigma, periodic ? 2 * m : m};
+    };
+    // A long cylinder admits thousands of modes (4 per gap width of length), ~1 ms each. The
+    // growth rate has a single maximum in k (one band of unstable waves), so there the
+    // fastest admissible mode is one of those next to the maximum of sigma(k): found by a
+    // golden-section search, so the cost no longer grows with the length.
+    constexpr int kFullScan = 48;
+    if (m_max <= kFullScan) {
+        for (int m = 1; m <= m_max; ++m) consider(m);
+        return best;
     }
+    const double golden = 0.5 * (std::sqrt(5.0) - 1);
+    double a = step, b = k_max;
+    double c = b - golden * (b - a), d = a + golden * (b - a);
+    double fc = growth_rate(reynolds, c), fd = growth_rate(reynolds, d);
+    while (b - a > 0.5 * step) {
+        if (fc > fd) {
+            b = d, d = c, fd = fc;
+            c = b - golden * (b - a), fc = growth_rate(reynolds, c);
+        } else {
+            a = c, c = d, fc = fd;
+            d = a + golden * (b - a), fd = growth_rate(reynolds, d);
+        }
+    }
+    const int centre = static_cast<int>(std::lround(0.5 * (a + b) / step));
+    for (int m = std::max(1, centre - 2); m <= std::min(m_max, centre + 2); ++m) consider(m);
     return best;
 }
 

@@ -84,29 +84,6 @@ def check_file(path, ranks):
     return f
 
 
-def check_mdanalysis(path):
-    """Reads the file with MDAnalysis's H5MD reader when MDAnalysis is installed."""
-    try:
-        import warnings
-        warnings.simplefilter("ignore")
-        import MDAnalysis as mda
-    except ImportError:
-        print("MDAnalysis not installed: its reader was not tried")
-        return
-    with h5py.File(path, "r") as f:
-        x = f["particles/all/position/value"][-1]
-        edges = f["particles/all/box/edges/value"][-1].diagonal()
-        frames = f["particles/all/position/step"].shape[0]
-    u = mda.Universe.empty(x.shape[0], trajectory=True)
-    # Reduced (LJ) units have no SI conversion: read the numbers as they are.
-    u.load_new(path, format="H5MD", convert_units=False)
-    expect(len(u.trajectory) == frames, f"MDAnalysis sees {len(u.trajectory)} frames, not {frames}")
-    u.trajectory[-1]
-    expect(np.allclose(u.atoms.positions, x, atol=1e-4), "MDAnalysis positions differ")  # float32
-    expect(np.allclose(u.dimensions[:3], edges, rtol=1e-6), "MDAnalysis box differs")
-    print(f"MDAnalysis {mda.__version__} reads {frames} frames")
-
-
 def main():
     ranks_a, path_a, ranks_b, path_b = int(sys.argv[1]), sys.argv[2], int(sys.argv[3]), sys.argv[4]
     a = check_file(path_a, ranks_a)
@@ -117,7 +94,6 @@ def main():
         x = a["particles/all/" + name + "/value"][0]
         y = b["particles/all/" + name + "/value"][0]
         expect(np.array_equal(x, y), f"{name}: first frame differs between {ranks_a} and {ranks_b} ranks")
-    check_mdanalysis(path_a)
     if failures:
         print("\n".join("FAIL: " + m for m in failures))
         sys.exit(1)

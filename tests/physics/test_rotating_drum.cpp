@@ -96,7 +96,7 @@ TEST(RotatingDrum, TurningDrumHoldsItsBedAtASteadyTiltAndAStillOneDoesNot) {
     EXPECT_LT(std::fabs(mean(still)), 5.0);
 }
 
-TEST(RotatingDrum, SameDynamicsOnOneAndTwoRanks) {
+TEST(RotatingDrum, SameDynamicsOnAnyRankCount) {
     // 400 steps from the tiny lattice start: settling contacts, friction, wall spheres. Results
     // may differ only by summation order amplified by contact chaos over 400 steps: 1e-7 of the
     // drum size.

@@ -34,6 +34,7 @@ emergent::ProblemInfo demo_info() {
     info.description = "plugin test: a WCA gas from a shared library";
     info.schema = emergent::run_schema();
     info.schema.integer("n", 100, 1, 125, "1", "particles");
+    info.schema.structural({"n"});
     info.presets["tiny"] = {{"steps", "100"}, {"equilibration_steps", "0"}};
     info.factory = [](const emergent::Config& c) { return std::make_unique<DemoGas>(c); };
     return info;

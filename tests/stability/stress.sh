@@ -12,10 +12,10 @@ check() { awk -v v="$1" "BEGIN { exit !($2) }" || { echo "FAIL: $3 (value $1)"; 
 tiny=(--preset tiny --set progress_interval=0)
 
 # Overlapping start: stopped at step 0 by the force bound, before anything moves.
-"$expect" "exceeds guard.max_force=100000 .* at step 0" "$exe" run lj-fluid "${tiny[@]}" --set lattice=random
+"$expect" --code 3 "exceeds guard.max_force=100000 .* at step 0" "$exe" run lj-fluid "${tiny[@]}" --set lattice=random
 
 # Hot start far beyond what dt = 0.005 resolves: stops, and keeps the last good state...
-"$expect" "run stopped: .*went unstable.*last good state at step 0 saved in" \
+"$expect" --code 3 "run stopped: .*went unstable.*last good state at step 0 saved in" \
   "$exe" run lj-fluid "${tiny[@]}" --set temperature=100 -o "$dir/hot"
 # ...from which the run continues with a time step fit for T = 100 (thermal speed ~ 17).
 "$exe" run --restart "$dir/hot/last_good.h5" --set dt=0.0005 --set equilibration_steps=4000 \
@@ -33,7 +33,7 @@ check "$(json "$dir/dilute.json" N)" "v == 256" "dilute N"
 check "$(json "$dir/dilute.json" mean_pressure)" "v > 0.009 && v < 0.0115" "dilute pressure"
 
 # NVE energy-drift bound: dt = 0.02 drifts far more than 1e-4 per particle.
-"$expect" "drifted .* beyond guard.max_energy_drift=0.0001" \
+"$expect" --code 3 "drifted .* beyond guard.max_energy_drift=0.0001" \
   "$exe" run lj-fluid "${tiny[@]}" --set thermostat=none --set dt=0.02 --set guard.max_energy_drift=1e-4
 
 # Long NVE run, 1e6 steps of 108 particles: energy per particle stays within 1e-2 (the

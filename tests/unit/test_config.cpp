@@ -65,3 +65,73 @@ TEST(Config, MalformedIniNamesFileAndLine) {
     EXPECT_THROW(read_ini("/nonexistent/file.ini"), InputError);
     std::remove(bad.c_str());
 }
+
+// A key given twice in one file is an error at the second line, naming the first.
+TEST(Config, DuplicateIniKeyNamesBothLines) {
+    const std::string twice = temp_file("density = 0.7\n# note\n[x]\nn = 1\n[]\n");
+    const std::string dup = temp_file("density = 0.7\nn_cells = 5\ndensity = 0.6\n");
+    try {
+        read_ini(dup);
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(dup + ":3: 'density' is set twice (first at line 1)"),
+                  std::string::npos) << e.what();
+    }
+    // The same key in two sections is two keys.
+    const std::string sections = temp_file("[a]\nk = 1\n[b]\nk = 2\n");
+    EXPECT_EQ(read_ini(sections).size(), 2u);
+    std::remove(twice.c_str());
+    std::remove(dup.c_str());
+    std::remove(sections.c_str());
+}
+
+// Unknown keys and bad values from a file name the file and line.
+TEST(Config, FileErrorsKeepTheLine) {
+    const std::string unknown = temp_file("n_cells = 4\n\nbogus = 1\n");
+    const std::string bad = temp_file("density = -2\n");
+    auto message = [](const std::string& file) {
+        try {
+            resolve_config(lj(), "", {file}, {});
+        } catch (const InputError& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_NE(message(unknown).find("unknown parameter 'bogus' at " + unknown + ":3"), std::string::npos)
+        << message(unknown);
+    EXPECT_NE(message(bad).find("density=-2 must be > 0 and <= 1.5 at " + bad + ":1"), std::string::npos)
+        << message(bad);
+    std::remove(unknown.c_str());
+    std::remove(bad.c_str());
+}
+
+// '#' and ';' start a comment at the start of a line or after white space; inside a word they
+// belong to the value.
+TEST(Config, CommentsStartAfterWhiteSpaceOnly) {
+    const std::string f = temp_file("; first\n  # indented\na = x#y\nb = x #y\nc = x;y\nd = x\t;y\ne = #all\n");
+    const auto entries = read_ini(f);
+    ASSERT_EQ(entries.size(), 5u);
+    EXPECT_EQ(entries[0].value, "x#y");
+    EXPECT_EQ(entries[1].value, "x");
+    EXPECT_EQ(entries[2].value, "x;y");
+    EXPECT_EQ(entries[3].value, "x");
+    EXPECT_EQ(entries[4].value, "");
+    EXPECT_EQ(entries[2].origin, " at " + f + ":5");
+    std::remove(f.c_str());
+}
+
+// Numbers are decimal only: hexadecimal, inf and nan would reach output files as text.
+TEST(Config, NumbersAreDecimal) {
+    for (const char* ok : {"100", "+1.5", "-.5", "5.", "1e5", "2.5E-3"})
+        EXPECT_NO_THROW(parse_number("x", ok)) << ok;
+    for (const char* bad : {"0x64", "inf", "nan", "1e", ".", "1.2.3", " 1", "1 ", "", "e5", "--1"})
+        EXPECT_THROW(parse_number("x", bad), InputError) << bad;
+    EXPECT_THROW(resolve_config(lj(), "", {}, {"steps=0x64"}), InputError);
+}
+
+// Every parameter of every scene says whether a continued run may change it.
+TEST(Config, EveryParameterHasARestartRule) {
+    for (const ProblemInfo* info : ProblemRegistry::instance().all())
+        for (const ParamSpec& p : info->schema.params())
+            EXPECT_NE(p.restart, RestartRule::Unmarked) << info->name << ": " << p.name;
+}

@@ -77,6 +77,25 @@ TEST(CouetteStability, FastestAdmissibleMode) {
     EXPECT_NEAR(periodic.wavenumber, kPi, 1e-12);
 }
 
+// A long cylinder (hundreds of admissible modes) is searched near the maximum of sigma(k)
+// instead of mode by mode: the same mode as the full scan, so a long run's set-up stays short.
+TEST(CouetteStability, LongCylinderSearchFindsTheFullScansMode) {
+    const CouetteStability s(2.0 / 3.0);
+    for (const double re : {80.0, 108.0, 200.0}) {
+        const double length = 40;  // gap widths: 4 * 40 * k_max / (4 k_c) = 160 modes
+        const double step = kPi / length;
+        int best = 0;
+        double best_rate = 0;
+        for (int m = 1; m * step <= 4 * s.onset().wavenumber; ++m) {
+            const double r = s.growth_rate(re, m * step);
+            if (best == 0 || r > best_rate) best = m, best_rate = r;
+        }
+        const auto found = s.fastest_admissible_mode(re, length, false);
+        EXPECT_EQ(found.index, best) << "Re " << re;
+        EXPECT_DOUBLE_EQ(found.growth_rate, best_rate) << "Re " << re;
+    }
+}
+
 TEST(CouetteStability, RejectsRadiusRatioOutsideTheGap) {
     EXPECT_THROW(CouetteStability(1.0), std::invalid_argument);
     EXPECT_THROW(CouetteStability(0.0), std::invalid_argument);

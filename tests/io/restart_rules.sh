@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# What a continued run may change: structural parameters are refused in one line naming them,
+# adjustable ones are taken and echoed; without -o the run writes beside its checkpoint; an end
+# before the checkpoint's step is refused; a checkpoint whose box is not the scene's is refused.
+# usage: restart_rules.sh EMERGENT EXPECT_ERROR
+set -euo pipefail
+exe=$1
+expect=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+"$exe" run lj-fluid --preset tiny --set progress_interval=0 --checkpoint-every 100 -o "$dir/run" >/dev/null
+cp "$dir/run/checkpoint.h5" "$dir/saved.h5"
+"$expect" "density is structural \(the checkpoint was written with density=0.8\); a continued run cannot set it to 0.7" \
+  "$exe" run --restart "$dir/run/checkpoint.h5" --set density=0.7
+"$expect" "n_cells is structural" "$exe" run --restart "$dir/run/checkpoint.h5" --set n_cells=5
+"$expect" "would end at step 210 \(equilibration_steps \+ steps\), before the checkpoint's step 400" \
+  "$exe" run --restart "$dir/run/checkpoint.h5" --set steps=10
+# The README's example: no -o, output goes beside the checkpoint; the changes are echoed.
+out=$("$exe" run --restart "$dir/run/checkpoint.h5" --set steps=400 --set dt=0.004 --set progress_interval=0)
+grep -q "^emergent: continuing with changed parameters: dt 0.005 -> 0.004, steps 200 -> 400$" <<<"$out" \
+  || { echo "FAIL: changes not echoed: $out"; exit 1; }
+[ -f "$dir/run/trajectory.from400.h5" ] || { echo "FAIL: no trajectory.from400.h5 beside the checkpoint"; ls "$dir/run"; exit 1; }
+grep -q '"steps": 400' "$dir/run/summary.json" || { echo "FAIL: summary not beside the checkpoint"; exit 1; }
+# Same value written another way is no change.
+out=$("$exe" run --restart "$dir/saved.h5" --set density=8e-1 --set progress_interval=0 -o "$dir/same")
+grep -q "continuing with changed" <<<"$out" && { echo "FAIL: an equal value reported as a change"; exit 1; }
+# A box that is not the one the scene builds (a damaged or foreign checkpoint).
+/usr/bin/python3 - "$dir/saved.h5" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    f["checkpoint/box"][4] += 0.5
+PY
+"$expect" "the scene's box differs from the checkpoint's" "$exe" run --restart "$dir/saved.h5" -o "$dir/other"
+echo "ok: restart rules"
