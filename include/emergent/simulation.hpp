@@ -164,9 +164,14 @@ public:
     /// then, so a run continued on the same rank count retraces the original bit for bit.
     /// With rigid bodies, `bodies` holds this rank's bodies (by centre of mass); the spheres
     /// of bodies in `owned` are dropped and placed again from the bodies, so such a
-    /// continuation is exact only up to the list being rebuilt at the restart.
+    /// continuation may differ from the uninterrupted run by summation order (the list is
+    /// built afresh; tests/io/rigid_output.sh finds a settling bed bit-identical).
+    /// `saved_forces`: owned.force holds the forces of the saved step, which the run continues
+    /// with (velocity-dependent forces cannot be recomputed from a saved state); otherwise they
+    /// are recomputed from the positions.
     void restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
-                 double time, long long rebuilds, ParticleStore* bodies = nullptr);
+                 double time, long long rebuilds, ParticleStore* bodies = nullptr,
+                 bool saved_forces = false);
 
     // --- state ---
     ParticleStore& particles();

@@ -404,7 +404,7 @@ void Simulation::restore(const StateSnapshot& snapshot) {
     std::vector<Vec3> reference = snapshot.reference;
     ParticleStore bodies = snapshot.bodies;
     restore(std::move(copy), std::move(reference), snapshot.step, snapshot.time,
-            snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr);
+            snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr, true);
 }
 
 const std::vector<Vec3>& Simulation::list_reference_positions() const {
@@ -417,7 +417,7 @@ int Simulation::rank_of(const Vec3& x) const {
 }
 
 void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
-                         double time, long long rebuilds, ParticleStore* bodies) {
+                         double time, long long rebuilds, ParticleStore* bodies, bool saved_forces) {
     Engine& e = *engine_;
     if (e.bodies() != (bodies != nullptr))
         throw InputError("restore: the saved state and this scene disagree about rigid bodies");
@@ -425,20 +425,26 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
         e.rigid.store() = std::move(*bodies);
         if (!owned.has_rigid_fields()) owned.enable_rigid_fields();
     }
+    if (reference.size() != owned.n_owned()) throw std::logic_error("restore: size mismatch");
+    // The list is rebuilt from the positions it was originally built from, which reorders the
+    // particles: their current positions and saved forces are kept by id meanwhile.
+    std::vector<std::pair<std::int64_t, std::size_t>> by_id(owned.n_owned());
+    for (std::size_t i = 0; i < owned.n_owned(); ++i) by_id[i] = {owned.id[i], i};
+    std::sort(by_id.begin(), by_id.end());
+    std::vector<Vec3> current = owned.position, forces = owned.force;
+    owned.position.assign(reference.begin(), reference.end());
+    owned.position.resize(current.size());
     e.store = std::move(owned);
     ParticleStore& s = e.store;
-    if (reference.size() != s.n_owned()) throw std::logic_error("restore: size mismatch");
-    // The current positions ride in the force array (recomputed below) while the list is
-    // rebuilt from the positions it was originally built from.
-    for (std::size_t i = 0; i < s.n_owned(); ++i) {
-        s.force[i] = s.position[i];
-        s.position[i] = reference[i];
-    }
     e.prepare();
     e.rebuild();
+    auto saved = [&](std::int64_t id) {
+        const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(id, std::size_t{0}));
+        return it->second;
+    };
     // Spheres of bodies were placed afresh by the build; free particles get their positions back.
     for (std::size_t i = 0; i < s.n_owned(); ++i)
-        if (e.is_free(i)) std::swap(s.position[i], s.force[i]);
+        if (e.is_free(i)) s.position[i] = current[saved(s.id[i])];
     e.halo.gather_positions(s);
     if (e.ghost_fields & kVelocity) e.halo.gather_velocities(s);
     e.step = step;
@@ -446,6 +452,13 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     e.rebuilds = rebuilds;
     e.count_bodies();
     e.compute_forces(true, e.time);
+    // Forces that depend on velocities (damping, friction) were computed in the run from the
+    // half-step velocities, which a saved state does not hold: the saved forces continue it
+    // exactly (the sums for measure() come from the recomputation).
+    if (saved_forces) {
+        for (std::size_t i = 0; i < s.n_owned(); ++i) s.force[i] = forces[saved(s.id[i])];
+        if (e.bodies()) e.rigid.sum_forces(s);
+    }
 }
 
 void Simulation::step(bool sample) {

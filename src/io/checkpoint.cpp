@@ -103,6 +103,7 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         };
         put("position", H5T_NATIVE_DOUBLE, 3, s.position.data(), sizeof(Vec3));
         put("velocity", H5T_NATIVE_DOUBLE, 3, s.velocity.data(), sizeof(Vec3));
+        put("force", H5T_NATIVE_DOUBLE, 3, s.force.data(), sizeof(Vec3));
         put("image", H5T_NATIVE_INT, 3, s.image.data(), sizeof(Int3));
         put("species", H5T_NATIVE_INT, 0, s.species.data(), sizeof(int));
         put("diameter", H5T_NATIVE_DOUBLE, 0, s.diameter.data(), sizeof(Real));
@@ -206,7 +207,8 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     const decomp::IdBlocks blocks{h.n_global, n_ranks};
     const long long first = blocks.first(rank);
     const auto count = static_cast<std::size_t>(blocks.first(rank + 1) - first);
-    std::vector<Vec3> x(count), v(count), ref(count);
+    std::vector<Vec3> x(count), v(count), ref(count), f(count);
+    bool with_forces = false;
     std::vector<Int3> image(count);
     std::vector<int> species(count);
     std::vector<Real> diameter(count);
@@ -219,6 +221,8 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
         H5Id root = open_group(file, "checkpoint");
         read_rows(root, "position", H5T_NATIVE_DOUBLE, 3, x.data(), first, count);
         read_rows(root, "velocity", H5T_NATIVE_DOUBLE, 3, v.data(), first, count);
+        with_forces = exists(root, "force");  // checkpoints before forces were kept: recomputed
+        if (with_forces) read_rows(root, "force", H5T_NATIVE_DOUBLE, 3, f.data(), first, count);
         read_rows(root, "reference_position", H5T_NATIVE_DOUBLE, 3, ref.data(), first, count);
         read_rows(root, "image", H5T_NATIVE_INT, 3, image.data(), first, count);
         read_rows(root, "species", H5T_NATIVE_INT, 0, species.data(), first, count);
@@ -270,7 +274,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     std::vector<int> destination(count);
     for (std::size_t k = 0; k < count; ++k) destination[k] = sim.rank_of(ref[k]);
     const decomp::Distributor plan(comm, destination);
-    const auto mx = plan.apply(x), mv = plan.apply(v), mref = plan.apply(ref);
+    const auto mx = plan.apply(x), mv = plan.apply(v), mref = plan.apply(ref), mf = plan.apply(f);
     const auto mimage = plan.apply(image);
     const auto mspecies = plan.apply(species);
     const auto mdiameter = plan.apply(diameter);
@@ -281,10 +285,11 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     for (std::size_t k = 0; k < plan.n_import(); ++k) {
         owned.add_owned(mx[k], mv[k], mspecies[k], mid[k], mdiameter[k]);
         owned.image[k] = mimage[k];
+        owned.force[k] = mf[k];
         if (with_bodies) owned.body[k] = mbody[k];
     }
     sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,
-                h.rebuilds, with_bodies ? &bodies : nullptr);
+                h.rebuilds, with_bodies ? &bodies : nullptr, with_forces);
 }
 
 }  // namespace
