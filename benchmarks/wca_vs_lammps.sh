@@ -1,60 +1,102 @@
 #!/usr/bin/env bash
-# WCA fluid (rho = 0.8, T = 1, dt = 0.005, NVE, skin 0.3) through emergent and LAMMPS, side by
-# side: for each size and rank count the two programs alternate, REPEATS times each, and the
-# medians of atom-steps/s (timed loop only, after 200 warm-up steps) and their ratio are printed
-# as a Markdown table, with peak resident memory per particle (summed over ranks).
+# WCA fluid (rho = 0.8, T = 1, dt = 0.005, NVE, skin 0.3, fcc start) through emergent and
+# LAMMPS (plain and `-sf opt`), side by side, as a sceptic would have it:
+# - each round runs all three programs once; the order rotates from round to round, so each
+#   program runs first equally often;
+# - per round, emergent's rate over the faster LAMMPS variant of that round; the table gives the
+#   median of these per-round ratios with their min-max, beside the medians of the rates;
+# - peak resident memory of every rank (GNU time inside mpirun), summed, per particle;
+# - timed loop only, after 200 warm-up steps, for both (LAMMPS: "Loop time" of its second run);
+# - the raw log (machine, both builds, every run) goes to LOG (benchmarks/logs/...).
 #
-# usage: benchmarks/wca_vs_lammps.sh [REPEATS] [SIZES] [RANKS]
-#   defaults: 3 "20 40" "1 2"   (n_cells 20 -> N = 32000, 40 -> N = 256000)
-# Needs build/bin/emergent; LAMMPS (`lmp`, Debian package lammps) is used when installed.
+# usage: benchmarks/wca_vs_lammps.sh [ROUNDS] [SIZES] [RANKS] [LOG]
+#   defaults: 5 "20 40" "1 2" benchmarks/logs/wca_vs_lammps_<date>.log
+#   (n_cells 20 -> N = 32000; 40 -> 256000; 80 -> 2048000)
+# Needs build/bin/emergent and LAMMPS (`lmp`, Debian package lammps).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-repeats=${1:-3}
+rounds=${1:-5}
 sizes=${2:-"20 40"}
 ranks_list=${3:-"1 2"}
-exe=$PWD/build/bin/emergent
+log=${4:-benchmarks/logs/wca_vs_lammps_$(date -u +%Y-%m-%d).log}
+source benchmarks/common.sh
 lmp_input=$PWD/benchmarks/in.wca_bench.lmp
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
-have_lmp=0
-command -v lmp >/dev/null && have_lmp=1
+command -v lmp >/dev/null || { echo "wca_vs_lammps.sh: needs LAMMPS (apt-get install lammps)" >&2; exit 2; }
+export OMP_NUM_THREADS=1
+mkdir -p "$(dirname "$log")"
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
-# Peak RSS of each rank, from GNU time run inside mpirun (one file per rank), summed.
+# Peak RSS of each rank (one file per rank from GNU time), summed, in bytes.
 rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
+steps_for() { echo $(( $1 >= 40 ? 1000 : 2000 )); }
 
-printf '| N | ranks | emergent atom-steps/s | B/particle | LAMMPS atom-steps/s | B/particle | emergent/LAMMPS |\n'
-printf '|---|---|---|---|---|---|---|\n'
+# run_program NAME NP NC: one timed run; prints "rate bytes".
+run_program() {
+  local name=$1 np=$2 nc=$3 steps
+  steps=$(steps_for "$nc")
+  local n=$((4 * nc * nc * nc))
+  case $name in
+    emergent)
+      mpirun --oversubscribe -np "$np" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
+        $exe run lj-fluid --preset bench --set n_cells=$nc --set steps=$steps --set skin=0.3 \
+        --set progress_interval=0 --summary-json $work/s.json" >/dev/null
+      echo "$(summary_value "$work/s.json" atom_steps_per_second) $(rss_sum "$work/rss")" ;;
+    lammps|lammps-opt)
+      local suffix=""
+      [ "$name" = lammps-opt ] && suffix="-sf opt"
+      mpirun --oversubscribe -np "$np" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
+        lmp $suffix -in $lmp_input -log $work/lmp.log -screen none -var nc $nc -var nsteps $steps \
+        -var skin 0.3" >/dev/null
+      local loop
+      loop=$(grep 'Loop time' "$work/lmp.log" | tail -n 1 | awk '{print $4}')
+      echo "$(echo "$n $steps $loop" | awk '{printf "%.6g", $1*$2/$3}') $(rss_sum "$work/rss")" ;;
+  esac
+}
+
+{
+  echo "# wca_vs_lammps.sh $rounds \"$sizes\" \"$ranks_list\"  ($(date -u +%FT%TZ))"
+  echo "# machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(free -g | awk '/Mem:/ {print $2}') GiB"
+  echo "# emergent: commit $(git rev-parse --short HEAD)$(git diff --quiet HEAD -- src include decomposition problems || echo ' (modified)'),"\
+       "$(grep -E '^CMAKE_BUILD_TYPE:' build/CMakeCache.txt | cut -d= -f2) build, CXX flags" \
+       "'$(grep -E '^CMAKE_CXX_FLAGS_RELEASE:' build/CMakeCache.txt | cut -d= -f2)'" \
+       "$(grep -q 'x86-64-v3 (AVX2) code 1' build/build.log 2>/dev/null && echo '-march=x86-64-v3' || echo '(generic x86-64)')," \
+       "g++ $(g++ -dumpfullversion)"
+  echo "# LAMMPS: $(lmp -h | sed -n 's/^Large-scale.*- \(.*\)$/\1/p' | head -n 1), Debian package lammps" \
+       "$(dpkg-query -W -f='${Version}' lammps 2>/dev/null); $(lmp -h | grep -m1 '^Compiler:');" \
+       "Debian's package build flags: $(dpkg-buildflags --get CXXFLAGS 2>/dev/null | awk '{print $1, $2}')"
+  echo "# each line: N ranks round program atom-steps/s peak-RSS-bytes(summed over ranks)"
+} >"$log"
+
+printf '| N | ranks | emergent atom-steps/s | B/atom | LAMMPS atom-steps/s | B/atom | LAMMPS -sf opt | B/atom | emergent / faster LAMMPS: median (min-max) of %d rounds |\n' "$rounds"
+printf '|---|---|---|---|---|---|---|---|---|\n'
+programs=(emergent lammps lammps-opt)
 for nc in $sizes; do
   n=$((4 * nc * nc * nc))
-  steps=$(( nc >= 40 ? 1000 : 2000 ))
   for np in $ranks_list; do
-    : >"$work/e" ; : >"$work/l"; : >"$work/em"; : >"$work/lm"
-    for r in $(seq "$repeats"); do
-      mpirun --oversubscribe -np "$np" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
-        $exe run lj-fluid --preset bench --set n_cells=$nc --set steps=$steps \
-        --set skin=0.3 --set progress_interval=0 --summary-json $work/s.json" >/dev/null
-      grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/e"
-      echo "$(rss_sum "$work/rss") $n" | awk '{print $1/$2}' >>"$work/em"
-      if [ "$have_lmp" = 1 ]; then
-        mpirun --oversubscribe -np "$np" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
-          lmp -in $lmp_input -log $work/lmp.log -screen none -var nc $nc -var nsteps $steps \
-          -var skin 0.3" >/dev/null
-        loop=$(grep 'Loop time' "$work/lmp.log" | tail -n 1 | awk '{print $4}')
-        echo "$n $steps $loop" | awk '{print $1*$2/$3}' >>"$work/l"
-        echo "$(rss_sum "$work/rss") $n" | awk '{print $1/$2}' >>"$work/lm"
-      fi
+    : >"$work/ratios"
+    for p in "${programs[@]}"; do : >"$work/rate.$p"; : >"$work/mem.$p"; done
+    for r in $(seq "$rounds"); do
+      declare -A rate=()
+      for k in 0 1 2; do
+        p=${programs[$(( (r + k) % 3 ))]}
+        read -r rt bytes < <(run_program "$p" "$np" "$nc")
+        echo "$n $np $r $p $rt $bytes" >>"$log"
+        rate[$p]=$rt
+        echo "$rt" >>"$work/rate.$p"
+        echo "$bytes $n" | awk '{print $1/$2}' >>"$work/mem.$p"
+      done
+      echo "${rate[emergent]} ${rate[lammps]} ${rate[lammps-opt]}" \
+        | awk '{f = ($2 > $3 ? $2 : $3); print $1 / f}' >>"$work/ratios"
     done
-    e=$(median <"$work/e"); em=$(median <"$work/em")
-    if [ "$have_lmp" = 1 ]; then
-      l=$(median <"$work/l"); lm=$(median <"$work/lm")
-      ratio=$(echo "$e $l" | awk '{printf "%.2f", $1/$2}')
-    else
-      l="n/a"; lm="n/a"; ratio="n/a"
-    fi
-    printf '| %d | %d | %.3g | %.0f | %s | %s | %s |\n' "$n" "$np" "$e" "$em" \
-      "$( [ "$l" = n/a ] && echo n/a || printf '%.3g' "$l")" \
-      "$( [ "$lm" = n/a ] && echo n/a || printf '%.0f' "$lm")" "$ratio"
+    ratio=$(median <"$work/ratios")
+    lo=$(sort -g "$work/ratios" | head -n 1)
+    hi=$(sort -g "$work/ratios" | tail -n 1)
+    printf '| %d | %d | %.3g | %.0f | %.3g | %.0f | %.3g | %.0f | %.2f (%.2f-%.2f) |\n' "$n" "$np" \
+      "$(median <"$work/rate.emergent")" "$(median <"$work/mem.emergent")" \
+      "$(median <"$work/rate.lammps")" "$(median <"$work/mem.lammps")" \
+      "$(median <"$work/rate.lammps-opt")" "$(median <"$work/mem.lammps-opt")" "$ratio" "$lo" "$hi" \
+      | tee -a "$log.table"
   done
 done
+{ echo "# table"; cat "$log.table"; } >>"$log"
+rm -f "$log.table"
+echo "log: $log"

@@ -56,16 +56,19 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
         leaving_[0].clear();
         leaving_[1].clear();
         keep_.clear();
+        const bool alone = grid.dims()[d] == 1;
+        // The kept particles are listed only where some leave for another rank.
+        if (!alone) keep_.reserve(store.n_owned());
         for (std::size_t i = 0; i < store.n_owned(); ++i) {
             Vec3& x = store.position[i];
             const int side = x[d] < lo[d] ? 0 : (x[d] >= hi[d] ? 1 : -1);
             if (side < 0) {
-                keep_.push_back(static_cast<std::uint32_t>(i));
+                if (!alone) keep_.push_back(static_cast<std::uint32_t>(i));
                 continue;
             }
             if (grid.neighbour(d, side) == MPI_PROC_NULL) {
                 report(store, i, d, "left the region through a closed boundary");
-                keep_.push_back(static_cast<std::uint32_t>(i));
+                if (!alone) keep_.push_back(static_cast<std::uint32_t>(i));
                 continue;
             }
             if (grid.wraps(d, side)) {
@@ -74,7 +77,6 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
             }
             leaving_[side].push_back(static_cast<int>(i));
         }
-        const bool alone = grid.dims()[d] == 1;
         if (alone) {
             // Our own periodic image: the wrap above was the whole move.
             for (int side = 0; side < 2; ++side)

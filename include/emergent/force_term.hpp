@@ -43,6 +43,9 @@ public:
     virtual bool conservative() const { return true; }
     /// Fields ghost particles must carry for this term.
     virtual unsigned ghost_fields() const { return kPosition; }
+    /// Fields the term reads of the particles it acts on (by default those of the ghosts); the
+    /// engine keeps optional ones (diameters) only when some term reads them.
+    virtual unsigned particle_fields() const { return ghost_fields(); }
     /// Adds the term's forces to store.force; when `sample`, also its energy and virial.
     virtual void add_forces(ParticleStore& store, const NeighbourList& list,
                             const ForceContext& context, bool sample, ForceSums& sums) const = 0;

@@ -4,6 +4,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "emergent/quaternion.hpp"
@@ -50,7 +52,7 @@ public:
     std::vector<int> species;          ///< index into the species tables
     std::vector<std::int64_t> id;      ///< global, unique, stable over the run
     std::vector<Int3> image;           ///< periodic box crossings since the start
-    std::vector<Real> diameter;        ///< contact diameter (granular models; 1 otherwise)
+    std::vector<Real> diameter;        ///< contact diameter: present only after enable_diameters()
     // Rigid fields (empty unless enable_rigid_fields()): for a constituent sphere, the id of
     // its body (-1 for free particles); for a body store (position = centre of mass), the
     // orientation, the conjugate momentum of NO_SQUISH and the torque.
@@ -62,6 +64,11 @@ public:
     /// Gives every particle the rigid fields from now on (costs memory only where used).
     void enable_rigid_fields();
     bool has_rigid_fields() const { return rigid_; }
+    /// Gives every particle a diameter (1 until set) from now on: models with contacts need
+    /// them, a fluid does not pay for them. Adding a particle whose diameter is not 1 enables
+    /// them too.
+    void enable_diameters();
+    bool has_diameters() const { return diameters_; }
 
     std::size_t n_owned() const { return n_owned_; }
     std::size_t n_ghost() const { return position.size() - n_owned_; }
@@ -77,32 +84,72 @@ public:
     /// Sets the number of ghosts after the owned particles; ghost contents are left to the caller.
     void resize_ghosts(std::size_t n);
 
-    /// Reorders the owned particles: new index k holds the particle that was at order[k].
+    /// Reorders the owned particles: new index k holds the particle that was at order[k]
+    /// (distinct indices). `order` may select fewer than all (a resize_owned() then drops the
+    /// rest); done in place.
     void permute_owned(const std::vector<std::uint32_t>& order);
+
+    /// Releases capacity beyond the present size (after the particles are placed: growth by
+    /// appending one at a time may leave arrays nearly twice as large as needed).
+    void fit_capacity();
 
     /// Calls visit(FieldSpan) for every per-particle array.
     template <class Visitor>
     void for_each_field(Visitor&& visit) {
-        visit(FieldSpan{kPosition, sizeof(Vec3), position.data()});
-        visit(FieldSpan{kVelocity, sizeof(Vec3), velocity.data()});
-        visit(FieldSpan{kForce, sizeof(Vec3), force.data()});
-        visit(FieldSpan{kSpecies, sizeof(int), species.data()});
-        visit(FieldSpan{kId, sizeof(std::int64_t), id.data()});
-        visit(FieldSpan{kImage, sizeof(Int3), image.data()});
-        visit(FieldSpan{kDiameter, sizeof(Real), diameter.data()});
-        if (!rigid_) return;
-        visit(FieldSpan{kBody, sizeof(std::int64_t), body.data()});
-        visit(FieldSpan{kOrientation, sizeof(Quat), orientation.data()});
-        visit(FieldSpan{kAngularMomentum, sizeof(Quat), angular_momentum.data()});
-        visit(FieldSpan{kTorque, sizeof(Vec3), torque.data()});
+        for_each_array([&](const auto& entry, auto& array) {
+            visit(FieldSpan{entry.mask, sizeof(entry.fill), static_cast<void*>(array.data())});
+        });
     }
 
+    /// Copies the owned part of the `fields` of `from` (its rigid fields too, if it has them);
+    /// the other arrays are left empty, so a partial copy costs only what it holds. Such a
+    /// store is for keeping state (a last good state): resize_owned() makes it whole again.
+    void copy_owned(const ParticleStore& from, unsigned fields);
+
 private:
+    /// One per-particle array: its flag, the member, and the value new elements start with.
+    template <class T>
+    struct Field {
+        FieldMask mask;
+        std::vector<T> ParticleStore::*member;
+        T fill;
+    };
+
+    /// The per-particle arrays, listed once: resizing, permuting, packing and copying all walk
+    /// this table. Rigid fields come last and exist only after enable_rigid_fields(); diameters
+    /// only after enable_diameters().
+    static auto field_table() {
+        return std::make_tuple(
+            Field<Vec3>{kPosition, &ParticleStore::position, {0, 0, 0}},
+            Field<Vec3>{kVelocity, &ParticleStore::velocity, {0, 0, 0}},
+            Field<Vec3>{kForce, &ParticleStore::force, {0, 0, 0}},
+            Field<int>{kSpecies, &ParticleStore::species, 0},
+            Field<std::int64_t>{kId, &ParticleStore::id, 0},
+            Field<Int3>{kImage, &ParticleStore::image, {0, 0, 0}},
+            Field<Real>{kDiameter, &ParticleStore::diameter, 1},
+            Field<std::int64_t>{kBody, &ParticleStore::body, -1},
+            Field<Quat>{kOrientation, &ParticleStore::orientation, Quat{}},
+            Field<Quat>{kAngularMomentum, &ParticleStore::angular_momentum, Quat{0, 0, 0, 0}},
+            Field<Vec3>{kTorque, &ParticleStore::torque, {0, 0, 0}});
+    }
+
+    /// Calls visit(field entry, this store's array) for every array this store has.
+    template <class Visitor>
+    void for_each_array(Visitor&& visit) {
+        std::apply([&](const auto&... entry) {
+            ((present(entry.mask) ? visit(entry, this->*entry.member) : void()), ...);
+        }, field_table());
+    }
+
+    bool present(FieldMask mask) const {
+        return mask == kDiameter ? diameters_ : (mask < kBody || rigid_);
+    }
+
     void resize_all(std::size_t n);
 
     std::size_t n_owned_ = 0;
     bool rigid_ = false;
-    std::vector<unsigned char> scratch_;
+    bool diameters_ = false;
 };
 
 }  // namespace emergent

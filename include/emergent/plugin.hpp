@@ -15,7 +15,8 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-3"  // 3: Problem::expected_particles, ParamSpec::restart, restore(saved_forces)
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-3"  // 3: Problem::expected_particles, ParamSpec::restart, restore(saved_forces),
+                                                 //    ForceTerm::particle_fields, optional diameters
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \

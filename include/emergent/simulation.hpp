@@ -46,9 +46,13 @@ struct GuardLimits {
 
 /// Everything needed to continue from one step: this rank's owned particles and the positions
 /// the neighbour list was built from.
+/// Fields that hold one value for every particle (species 0, diameter 1) and forces that can be
+/// recomputed are left out, and `reference` is empty when the list was built at the saved step
+/// (the positions are the reference): a kept state of a one-species fluid costs 88 bytes per
+/// particle, 64 at a list build.
 struct StateSnapshot {
     ParticleStore owned;
-    std::vector<Vec3> reference;
+    std::vector<Vec3> reference;  ///< empty: the positions themselves
     ParticleStore bodies;  ///< rigid bodies owned here (empty without bodies)
     long long step = 0, rebuilds = 0;
     double time = 0;

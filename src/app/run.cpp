@@ -60,11 +60,12 @@ private:
 
 
 /// Returns the run to its last good state and saves it as DIR/last_good.h5; says where.
-std::string save_last_good(Simulation& sim, const StateSnapshot* good, const Config& cfg,
+std::string save_last_good(Simulation& sim, const RunGuard& guard, const Config& cfg,
                            std::vector<ThermoSample> series, const std::string& dir) {
-    if (!good) return "no good state was kept (guard.every=0)";
-    const std::string at = "last good state at step " + std::to_string(good->step);
-    if (dir.empty()) return at + " (run with -o DIR to keep it as a checkpoint)";
+    if (guard.last_good_step() < 0) return "no good state was kept (guard.every=0)";
+    const std::string at = "last good state at step " + std::to_string(guard.last_good_step());
+    const StateSnapshot* good = guard.last_good();
+    if (dir.empty() || !good) return at + " (run with -o DIR to keep it as a checkpoint)";
     sim.restore(*good);
     while (!series.empty() && series.back().step > good->step) series.pop_back();
     io::write_checkpoint(dir + "/last_good.h5", sim, cfg, series, {});
@@ -134,7 +135,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
     ProgressLine progress(cfg.real("progress_interval"), sim.step_index(), end, sim.rank() == 0);
     auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
     if (sim.step_index() == n_eq && series.empty()) series.push_back(sim.measure());
-    RunGuard guard(cfg, sim);
+    RunGuard guard(cfg, sim, !req.output_dir.empty());
     sim.reset_phase_times();
     Clock::time_point t0 = Clock::now();
     try {
@@ -168,8 +169,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
         }
     } catch (const InstabilityError& e) {
         throw InstabilityError(std::string(e.what()) + "; " +
-                               save_last_good(sim, guard.last_good(), cfg, series,
-                                              req.output_dir));
+                               save_last_good(sim, guard, cfg, series, req.output_dir));
     }
     return decomp::max(sim.comm(), seconds_since(t0));
 }

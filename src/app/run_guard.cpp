@@ -9,25 +9,28 @@
 
 namespace emergent::app {
 
-RunGuard::RunGuard(const Config& config, const Simulation& sim) {
+RunGuard::RunGuard(const Config& config, const Simulation& sim, bool keep_state) : keep_state_(keep_state) {
     limits_.max_force = config.real("guard.max_force");
     every_ = config.integer("guard.every");
     max_drift_ = sim.conserves_energy() ? config.real("guard.max_energy_drift") : 0.0;
     max_overlap_ = config.real("guard.max_overlap");
     // A bad start has no good state to fall back to: report it as it is.
     sim.check_guards(limits_);
-    // Keeping the last good state costs one copy of the owned particles (~130 B each);
-    // guard.every = 0 keeps none between checkpoints.
-    if (every_ > 0) {
-        sim.snapshot(last_good_);
-        have_good_ = true;
-    }
+    // Keeping the last good state costs a partial copy of the owned particles (64-112 B each,
+    // StateSnapshot); guard.every = 0 keeps none between checkpoints.
+    if (every_ > 0) keep(sim);
 }
 
 void RunGuard::after_step(const Simulation& sim, bool now) {
     if (!now && (every_ <= 0 || sim.step_index() % every_ != 0)) return;
     sim.check_guards(limits_);
-    sim.snapshot(last_good_);
+    keep(sim);
+}
+
+void RunGuard::keep(const Simulation& sim) {
+    // Without a place to save it the state is not copied: its step is all that is reported.
+    if (keep_state_) sim.snapshot(last_good_);
+    good_step_ = sim.step_index();
     have_good_ = true;
 }
 

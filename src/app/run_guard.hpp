@@ -14,7 +14,10 @@ namespace emergent::app {
 /// on every rank.
 class RunGuard {
 public:
-    RunGuard(const Config& config, const Simulation& sim);
+    /// `keep_state`: copy the good states (only worth their memory, 64-112 bytes a particle,
+    /// when the run has a directory to save the last one in); otherwise only their step is
+    /// remembered.
+    RunGuard(const Config& config, const Simulation& sim, bool keep_state);
 
     /// Runs the state checks if due (or if `now`), then remembers the state as good.
     void after_step(const Simulation& sim, bool now = false);
@@ -22,14 +25,20 @@ public:
     void on_sample(const Simulation& sim, const ThermoSample& t);
 
     /// The last state that passed the checks; null when none was kept (guard.every = 0 and no
-    /// checkpoint yet).
-    const StateSnapshot* last_good() const { return have_good_ ? &last_good_ : nullptr; }
+    /// checkpoint yet, or no state is kept).
+    const StateSnapshot* last_good() const { return have_good_ && keep_state_ ? &last_good_ : nullptr; }
+    /// Step of the last state that passed the checks; -1 when none did yet.
+    long long last_good_step() const { return have_good_ ? good_step_ : -1; }
 
 private:
+    void keep(const Simulation& sim);
+
     GuardLimits limits_;
     long long every_ = 0;
     double max_drift_ = 0, reference_energy_ = 0, max_overlap_ = 0;
     bool have_reference_ = false, have_good_ = false;
+    long long good_step_ = -1;
+    bool keep_state_ = true;
     StateSnapshot last_good_;
 };
 

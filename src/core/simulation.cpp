@@ -55,7 +55,9 @@ struct Simulation::Engine {
     NeighbourList list;
     ForceSums sums;
     unsigned ghost_fields = kPosition;
+    unsigned particle_fields = kPosition;  ///< what the force terms read of owned particles
     long long n_global = 0, step = 0, rebuilds = 0;
+    bool moved_since_build = true;  ///< a drift since the last list build
     double time = 0;
     PhaseTimes times;
     std::vector<std::uint32_t> order;
@@ -84,6 +86,8 @@ struct Simulation::Engine {
         if (bodies() && box.wedge.active())
             throw InputError("rigid bodies in a wedge region are not supported");
         n_global = decomp::sum(comm, static_cast<long long>(store.n_owned()));
+        if (particle_fields & kDiameter) store.enable_diameters();  // contacts read them
+        store.fit_capacity();
     }
 
     /// Re-partitions particles and rebuilds ghosts, cells and the Verlet list.
@@ -114,6 +118,7 @@ struct Simulation::Engine {
         const bool mixed_cells =
             bodies() || (box.wedge.active() && box.wedge.n != 2 && box.wedge.n != 4);
         list.build(store, cells, mixed_cells);
+        moved_since_build = false;
         if (bodies()) rigid.index_constituents(store);
         ++rebuilds;
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
@@ -138,6 +143,7 @@ struct Simulation::Engine {
     /// v += kick f/m, x += drift v; then the walls act on the drift.
     void kick_drift(double kick, double drift, double at) {
         PhaseTimer timer(times.integrate);
+        moved_since_build = true;
         exec::for_each(exec::Host{}, store.n_owned(),
                        integrate::KickDrift{store.position.data(), store.velocity.data(),
                                             store.force.data(), store.species.data(),
@@ -258,6 +264,7 @@ void Simulation::set_species_masses(const std::vector<double>& masses) {
 
 void Simulation::add_force(std::unique_ptr<ForceTerm> term) {
     engine_->ghost_fields |= term->ghost_fields();
+    engine_->particle_fields |= term->particle_fields();
     engine_->forces.push_back(std::move(term));
 }
 
@@ -380,19 +387,23 @@ StateSnapshot Simulation::snapshot() const {
 
 void Simulation::snapshot(StateSnapshot& snap) const {
     const Engine& e = *engine_;
-    const std::size_t n = e.store.n_owned();
-    if (e.store.has_rigid_fields() && !snap.owned.has_rigid_fields()) snap.owned.enable_rigid_fields();
-    snap.owned.resize_owned(n);
-    // Copies of the owned part of each field into the snapshot's existing storage (ghosts and
-    // forces are rebuilt on restore).
-    std::copy_n(e.store.position.begin(), n, snap.owned.position.begin());
-    std::copy_n(e.store.velocity.begin(), n, snap.owned.velocity.begin());
-    std::copy_n(e.store.species.begin(), n, snap.owned.species.begin());
-    std::copy_n(e.store.id.begin(), n, snap.owned.id.begin());
-    std::copy_n(e.store.image.begin(), n, snap.owned.image.begin());
-    std::copy_n(e.store.diameter.begin(), n, snap.owned.diameter.begin());
-    if (e.store.has_rigid_fields()) std::copy_n(e.store.body.begin(), n, snap.owned.body.begin());
-    snap.reference = e.list.reference_positions();
+    // The owned part of each field the restore needs (ghosts are rebuilt). Forces are kept only
+    // where they depend on velocities, which restore cannot recompute them from; conservative
+    // forces are recomputed. Of the rigid fields spheres need only their body's id. Species and
+    // diameters the same for every particle here are left to their fill values (0 and 1).
+    const ParticleStore& s = e.store;
+    const auto n = static_cast<std::ptrdiff_t>(s.n_owned());
+    unsigned fields = kPosition | kVelocity | kId | kImage | kBody;
+    if (e.ghost_fields & kVelocity) fields |= kForce;
+    if (std::any_of(s.species.begin(), s.species.begin() + n, [](int k) { return k != 0; })) fields |= kSpecies;
+    if (s.has_diameters() &&
+        std::any_of(s.diameter.begin(), s.diameter.begin() + n, [](Real d) { return d != 1; }))
+        fields |= kDiameter;
+    snap.owned.copy_owned(s, fields);
+    if (e.moved_since_build)
+        snap.reference = e.list.reference_positions();
+    else
+        std::vector<Vec3>().swap(snap.reference);
     if (e.bodies()) snap.bodies = e.rigid.bodies();
     snap.step = e.step;
     snap.time = e.time;
@@ -401,10 +412,12 @@ void Simulation::snapshot(StateSnapshot& snap) const {
 
 void Simulation::restore(const StateSnapshot& snapshot) {
     ParticleStore copy = snapshot.owned;
-    std::vector<Vec3> reference = snapshot.reference;
+    const bool saved_forces = !copy.force.empty();
+    copy.resize_owned(copy.n_owned());  // the arrays the snapshot left empty, at their fill values
+    std::vector<Vec3> reference = snapshot.reference.empty() ? copy.position : snapshot.reference;
     ParticleStore bodies = snapshot.bodies;
     restore(std::move(copy), std::move(reference), snapshot.step, snapshot.time,
-            snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr, true);
+            snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr, saved_forces);
 }
 
 const std::vector<Vec3>& Simulation::list_reference_positions() const {
@@ -431,7 +444,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     std::vector<std::pair<std::int64_t, std::size_t>> by_id(owned.n_owned());
     for (std::size_t i = 0; i < owned.n_owned(); ++i) by_id[i] = {owned.id[i], i};
     std::sort(by_id.begin(), by_id.end());
-    std::vector<Vec3> current = owned.position, forces = owned.force;
+    std::vector<Vec3> current = owned.position, forces = std::move(owned.force);
     owned.position.assign(reference.begin(), reference.end());
     owned.position.resize(current.size());
     e.store = std::move(owned);

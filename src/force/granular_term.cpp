@@ -153,6 +153,7 @@ public:
               const Vec3& velocity)
         : axis_(axis), position_(position), side_(side), p_(p), range_(range), velocity_(velocity) {}
     std::string name() const override { return "plane-wall"; }
+    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
     bool conservative() const override {
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && dot(velocity_, velocity_) == 0;
     }

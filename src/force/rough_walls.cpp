@@ -27,6 +27,7 @@ public:
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && lattice_.omega == 0;
     }
     double cutoff() const override { return 0; }
+    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
                     bool sample, ForceSums& sums) const override {
         const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;

@@ -106,7 +106,9 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
         put("force", H5T_NATIVE_DOUBLE, 3, s.force.data(), sizeof(Vec3));
         put("image", H5T_NATIVE_INT, 3, s.image.data(), sizeof(Int3));
         put("species", H5T_NATIVE_INT, 0, s.species.data(), sizeof(int));
-        put("diameter", H5T_NATIVE_DOUBLE, 0, s.diameter.data(), sizeof(Real));
+        const std::vector<Real> ones(s.has_diameters() ? 0 : s.n_owned(), 1.0);
+        put("diameter", H5T_NATIVE_DOUBLE, 0, s.has_diameters() ? s.diameter.data() : ones.data(),
+            sizeof(Real));
         put("reference_position", H5T_NATIVE_DOUBLE, 3, sim.list_reference_positions().data(),
             sizeof(Vec3));
         if (sim.has_bodies()) {

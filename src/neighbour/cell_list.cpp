@@ -83,12 +83,10 @@ void CellList::bin_after_sort(const Vec3* x, std::size_t n) {
     sorted_cell_.clear();  // good for one binning only
     count(x, n, known);
     members_.resize(n);
-    binned_.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t slot = next[cell_[i]]++;
         members_[slot] = static_cast<std::uint32_t>(i);
-        binned_[slot] = x[i];
     }
 }
 

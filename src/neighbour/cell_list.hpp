@@ -61,11 +61,9 @@ public:
     bool is_deep(int cell) const { return inner_[cell] == 2; }
     const std::uint32_t* members_begin(int cell) const { return &members_[start_[cell]]; }
     const std::uint32_t* members_end(int cell) const { return &members_[start_[cell + 1]]; }
-    /// Slots of cell c are [first(c), first(c + 1)) in members and binned positions.
+    /// Slots of cell c are [first(c), first(c + 1)) in members.
     std::uint32_t first(int cell) const { return start_[cell]; }
     const std::uint32_t* members() const { return members_.data(); }
-    /// Positions in cell order (a copy made by bin()), so a search streams through memory.
-    const Vec3* binned_positions() const { return binned_.data(); }
 
 private:
     /// Cells of particles [known, n) into cell_ (those before are set), then the per-cell
@@ -80,7 +78,6 @@ private:
     std::vector<char> inner_;  ///< per cell: 0 ghost, 1 inner, 2 inner with its stencil inner
     std::vector<std::uint32_t> start_, members_, cell_;
     std::vector<std::uint32_t> sorted_cell_;  ///< cells of the last sort_order, in its order
-    std::vector<Vec3> binned_;
 };
 
 }  // namespace emergent

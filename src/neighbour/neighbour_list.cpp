@@ -70,7 +70,6 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     }
     offset_.assign(n_owned + 1, 0);
     const std::uint32_t* member = cells.members();
-    const Vec3* xb = cells.binned_positions();
     // Stencil: the cells within reach as offsets of the linear index, in increasing order, so
     // that neighbouring cells of one row (consecutive indices, consecutive slots) merge into
     // one range below. Inner cells always have all of them: the grid's ghost shell is at least
@@ -122,13 +121,19 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
             if (i >= n_owned)
                 throw std::logic_error("NeighbourList::build: a ghost lies inside the domain; "
                                        "this region needs the general search");
-            const Vec3 xi = xb[a];
-            if (neighbour_.size() < count + bound) neighbour_.resize(2 * (count + bound));
+            // Positions are read through the cell members: owned particles are sorted by cell,
+            // so most reads stream. A binned copy of the positions saved 3.6 % of the build's
+            // instructions (callgrind) for 24 B a particle (benchmarks/RESULTS.md, "Memory").
+            const Vec3 xi = x[i];
+            // Grown by an eighth, not doubled: the list is the largest array after the
+            // particle store, and the next build reuses its room.
+            if (neighbour_.size() < count + bound) neighbour_.resize(count + bound + (count + bound) / 8);
             std::uint32_t* out = neighbour_.data();
             // Branch-free append: write every candidate, advance only past those in range.
             auto consider = [&](std::uint32_t b) {
-                const Real dx = xi.x - xb[b].x, dy = xi.y - xb[b].y, dz = xi.z - xb[b].z;
-                out[count] = member[b];
+                const std::uint32_t j = member[b];
+                const Real dx = xi.x - x[j].x, dy = xi.y - x[j].y, dz = xi.z - x[j].z;
+                out[count] = j;
                 count += (dx * dx + dy * dy + dz * dz < r2max) ? 1 : 0;
             };
             for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);

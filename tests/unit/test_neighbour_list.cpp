@@ -154,7 +154,6 @@ TEST(CellList, BinningAfterASortEqualsBinningAnew) {
         ASSERT_EQ(after_sort.first(c), fresh.first(c)) << "cell " << c;
         for (std::uint32_t s = fresh.first(c); s < fresh.first(c + 1); ++s) {
             EXPECT_EQ(after_sort.members()[s], fresh.members()[s]);
-            EXPECT_EQ(after_sort.binned_positions()[s].x, fresh.binned_positions()[s].x);
         }
     }
     // Used once: a second binning looks every cell up again (positions may have moved).
