@@ -34,3 +34,25 @@ settle_checkpoint() {
 
 # summary_value FILE KEY: a number from a run's summary JSON.
 summary_value() { grep -o "\"$2\": [0-9.e+-]*" "$1" | awk '{print $2}'; }
+
+# rss_sum PREFIX: peak RSS of each rank (one file PREFIX.<rank> per rank, written by GNU time
+# -f %M inside mpirun), summed, in bytes; the files are removed.
+rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
+
+# min_max FILE: "min-max" of the numbers in FILE.
+min_max() { sort -g "$1" | awk 'NR==1 {lo=$1} {hi=$1} END {printf "%.2f-%.2f", lo, hi}'; }
+
+# build_header: what a benchmark log records of the machine and both programs' builds.
+build_header() {
+  echo "# machine: $(getconf _NPROCESSORS_ONLN) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(free -g | awk '/Mem:/ {print $2}') GiB; $(date -u +%FT%TZ)"
+  echo "# emergent: commit $(git rev-parse --short HEAD)$(git diff --quiet HEAD -- src include decomposition problems || echo ' (modified)'),"\
+       "$(grep -E '^CMAKE_BUILD_TYPE:' build/CMakeCache.txt | cut -d= -f2) build, CXX flags" \
+       "'$(grep -E '^CMAKE_CXX_FLAGS_RELEASE:' build/CMakeCache.txt | cut -d= -f2)'" \
+       "$(grep -q '^EMERGENT_CPU_HAS_AVX2:INTERNAL=1' build/CMakeCache.txt && echo '-march=x86-64-v3' || echo '(generic x86-64)')," \
+       "g++ $(g++ -dumpfullversion)"
+  if command -v lmp >/dev/null; then
+    echo "# LAMMPS: $(lmp -h | sed -n 's/^Large-scale Atomic.Molecular Massively Parallel Simulator - //p' | head -n 1), Debian package lammps" \
+         "$(dpkg-query -W -f='${Version}' lammps 2>/dev/null); $(lmp -h | grep -m1 '^Compiler:');" \
+         "built with Debian's package flags ($(dpkg-buildflags --get CXXFLAGS 2>/dev/null | awk '{print $1, $2}') ...)"
+  fi
+}

@@ -1,66 +1,75 @@
 #!/usr/bin/env bash
-# Granular bed (19602 spheres, d = 1, k_n = 2000, gravity 1, floor, dt = 0.001): emergent's
-# granular-bed scene against LAMMPS gran/hooke (inputs beside this script, as in
-# shared/reference), both timed on the same settled bed, alternating, REPEATS runs each; then
-# emergent's specialised contact kernel against the generic one on a frictionless, undamped bed.
-#
-# Model differences (so the ratio compares comparable, not identical, work): LAMMPS integrates
-# sphere rotation (nve/sphere) and scales damping by the pair's effective mass; emergent's
-# spheres do not rotate (the paper's model) and take gamma in force/velocity, set here to
-# LAMMPS's gamma_n = 50, gamma_t = 25 times m_eff = m/2 (m = pi/6).
-# usage: benchmarks/granular_vs_lammps.sh [REPEATS] [RANKS]    (defaults 3, "1 2")
+# Granular bed (19602 spheres, d = 1, m = pi/6, k_n = 2000, gravity 1, floor, dt = 0.001, skin
+# 0.2) through emergent's granular-bed scene and LAMMPS gran/hooke, the same physics on both
+# sides: normal spring and damping (LAMMPS gamma_n = 50 on the pair's effective mass = emergent
+# gamma_n = 50 m/2), sliding friction min(gamma_s v_t, mu |f_n|) (LAMMPS dampflag 1, gamma_t =
+# 25, xmu = 0.5), no sphere rotation (LAMMPS fix nve: omega stays 0), the same floor law.
+# What still differs: each program settles its own bed by the same protocol (15 tau from the
+# same lattice, different random velocities); LAMMPS computes torques it never uses and runs
+# with newton off (its input); LAMMPS has no OPT variant of gran/hooke, so only plain runs.
+# Each program settles once; then ROUNDS rounds time 5000 steps after 200 warm-up steps, the
+# order alternating from round to round; the table gives the median of the per-round ratios
+# with their min-max, peak memory summed over ranks; the raw log goes to LOG.
+# usage: benchmarks/granular_vs_lammps.sh [ROUNDS] [RANKS] [LOG]
+#   defaults: 5 "1 2" benchmarks/logs/granular_vs_lammps_<date>.log
 set -euo pipefail
 cd "$(dirname "$0")/.."
-repeats=${1:-3}
+rounds=${1:-5}
 ranks_list=${2:-"1 2"}
-. benchmarks/common.sh
-rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
+log=${3:-benchmarks/logs/granular_vs_lammps_$(date -u +%Y-%m-%d).log}
+source benchmarks/common.sh
+command -v lmp >/dev/null || { echo "granular_vs_lammps.sh: needs LAMMPS (apt-get install lammps)" >&2; exit 2; }
+export OMP_NUM_THREADS=1
+mkdir -p "$(dirname "$log")"
 n=19602
-# Settle once in each program (15 tau), then time 5000 steps after 200 warm-up steps.
-"$exe" run granular-bed --set steps=0 --set progress_interval=0 --checkpoint-every 15000 \
-  -o "$work/settle" >/dev/null
-have_lmp=0
-if command -v lmp >/dev/null; then
-  have_lmp=1
-  (cd "$work" && lmp -in "$OLDPWD/benchmarks/in.gran_settle.lmp" -log none -screen none \
-     -var out "$work/gran_bed.restart")
-fi
-emergent_run() {  # np label extra-args...
-  local np=$1 label=$2; shift 2
-  mpirun --oversubscribe -np "$np" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
+skin=0.2
+"$exe" run granular-bed --set steps=0 --set skin=$skin --set progress_interval=0 \
+  --checkpoint-every 15000 -o "$work/settle" >/dev/null
+(cd "$work" && lmp -in "$OLDPWD/benchmarks/in.gran_settle.lmp" -log none -screen none \
+   -var out "$work/gran_bed.restart" -var skin $skin)
+
+run_emergent() {  # NP -> "rate bytes"
+  mpirun --oversubscribe -np "$1" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
     $exe run --restart $work/settle/checkpoint.h5 --set equilibration_steps=15200 --set steps=5000 \
-    --set checkpoint_every=0 --set progress_interval=0 $* --summary-json $work/s.json" >/dev/null
-  grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/$label"
-  echo "$(rss_sum "$work/rss") $n" | awk '{print $1/$2}' >>"$work/$label.mem"
+    --set checkpoint_every=0 --set progress_interval=0 --summary-json $work/s.json" >/dev/null
+  echo "$(summary_value "$work/s.json" atom_steps_per_second) $(rss_sum "$work/rss")"
 }
-printf '| ranks | emergent atom-steps/s | B/particle | LAMMPS atom-steps/s | B/particle | emergent/LAMMPS |\n'
+run_lammps() {  # NP -> "rate bytes"
+  (cd "$work" && mpirun --oversubscribe -np "$1" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
+    lmp -in $OLDPWD/benchmarks/in.gran_bench.lmp -log $work/lmp.log -screen none \
+    -var in $work/gran_bed.restart -var skin $skin" >/dev/null)
+  local loop
+  loop=$(grep 'Loop time' "$work/lmp.log" | tail -n 1 | awk '{print $4}')
+  echo "$(echo "$n 5000 $loop" | awk '{printf "%.6g", $1*$2/$3}') $(rss_sum "$work/rss")"
+}
+
+{
+  echo "# granular_vs_lammps.sh $rounds \"$ranks_list\"  (N = $n, skin $skin)"
+  build_header
+  echo "# each line: ranks round program atom-steps/s peak-RSS-bytes(summed over ranks)"
+} >"$log"
+printf '| ranks | emergent atom-steps/s | B/atom | LAMMPS atom-steps/s | B/atom | emergent / LAMMPS: median (min-max) of %d rounds |\n' "$rounds"
 printf '|---|---|---|---|---|---|\n'
 for np in $ranks_list; do
-  for r in $(seq "$repeats"); do
-    emergent_run "$np" "e$np"
-    if [ $have_lmp = 1 ]; then
-      (cd "$work" && mpirun --oversubscribe -np "$np" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
-        lmp -in $OLDPWD/benchmarks/in.gran_bench.lmp -log $work/lmp.log -screen none \
-        -var in $work/gran_bed.restart" >/dev/null)
-      loop=$(grep 'Loop time' "$work/lmp.log" | tail -n 1 | awk '{print $4}')
-      echo "$n 5000 $loop" | awk '{print $1*$2/$3}' >>"$work/l$np"
-      echo "$(rss_sum "$work/rss") $n" | awk '{print $1/$2}' >>"$work/l$np.mem"
-    fi
+  : >"$work/ratios"
+  for p in emergent lammps; do : >"$work/rate.$p"; : >"$work/mem.$p"; done
+  for r in $(seq "$rounds"); do
+    order="emergent lammps"
+    [ $((r % 2)) -eq 0 ] && order="lammps emergent"
+    declare -A rate=()
+    for p in $order; do
+      read -r rt bytes < <(run_$p "$np")
+      echo "$np $r $p $rt $bytes" >>"$log"
+      rate[$p]=$rt
+      echo "$rt" >>"$work/rate.$p"
+      echo "$bytes $n" | awk '{print $1/$2}' >>"$work/mem.$p"
+    done
+    echo "${rate[emergent]} ${rate[lammps]}" | awk '{print $1 / $2}' >>"$work/ratios"
   done
-  e=$(median <"$work/e$np"); em=$(median <"$work/e$np.mem")
-  if [ $have_lmp = 1 ]; then
-    l=$(median <"$work/l$np"); lm=$(median <"$work/l$np.mem")
-    printf '| %d | %.3g | %.0f | %.3g | %.0f | %.2f |\n' "$np" "$e" "$em" "$l" "$lm" "$(echo "$e $l" | awk '{print $1/$2}')"
-  else
-    printf '| %d | %.3g | %.0f | n/a | n/a | n/a |\n' "$np" "$e" "$em"
-  fi
+  printf '| %d | %.3g | %.0f | %.3g | %.0f | %.2f (%s) |\n' "$np" \
+    "$(median <"$work/rate.emergent")" "$(median <"$work/mem.emergent")" \
+    "$(median <"$work/rate.lammps")" "$(median <"$work/mem.lammps")" \
+    "$(median <"$work/ratios")" "$(min_max "$work/ratios")" | tee -a "$work/table"
 done
-# Specialisation: no damping, no friction; the specialised kernel compiles both out.
-for r in $(seq "$repeats"); do
-  for kernel in specialised generic; do
-    emergent_run 1 "k_$kernel" --set gamma_n=0 --set gamma_s=0 --set kernel=$kernel
-  done
-done
-s=$(median <"$work/k_specialised"); g=$(median <"$work/k_generic")
-echo
-echo "frictionless undamped bed, 1 rank: specialised $s, generic $g atom-steps/s, specialised/generic = $(echo "$s $g" | awk '{printf "%.2f", $1/$2}')"
+{ echo "# table"; cat "$work/table"; } >>"$log"
+echo "log: $log"

@@ -25,8 +25,6 @@ command -v lmp >/dev/null || { echo "wca_vs_lammps.sh: needs LAMMPS (apt-get ins
 export OMP_NUM_THREADS=1
 mkdir -p "$(dirname "$log")"
 
-# Peak RSS of each rank (one file per rank from GNU time), summed, in bytes.
-rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
 steps_for() { echo $(( $1 >= 40 ? 1000 : 2000 )); }
 
 # run_program NAME NP NC: one timed run; prints "rate bytes".
@@ -53,16 +51,8 @@ run_program() {
 }
 
 {
-  echo "# wca_vs_lammps.sh $rounds \"$sizes\" \"$ranks_list\"  ($(date -u +%FT%TZ))"
-  echo "# machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(free -g | awk '/Mem:/ {print $2}') GiB"
-  echo "# emergent: commit $(git rev-parse --short HEAD)$(git diff --quiet HEAD -- src include decomposition problems || echo ' (modified)'),"\
-       "$(grep -E '^CMAKE_BUILD_TYPE:' build/CMakeCache.txt | cut -d= -f2) build, CXX flags" \
-       "'$(grep -E '^CMAKE_CXX_FLAGS_RELEASE:' build/CMakeCache.txt | cut -d= -f2)'" \
-       "$(grep -q 'x86-64-v3 (AVX2) code 1' build/build.log 2>/dev/null && echo '-march=x86-64-v3' || echo '(generic x86-64)')," \
-       "g++ $(g++ -dumpfullversion)"
-  echo "# LAMMPS: $(lmp -h | sed -n 's/^Large-scale.*- \(.*\)$/\1/p' | head -n 1), Debian package lammps" \
-       "$(dpkg-query -W -f='${Version}' lammps 2>/dev/null); $(lmp -h | grep -m1 '^Compiler:');" \
-       "Debian's package build flags: $(dpkg-buildflags --get CXXFLAGS 2>/dev/null | awk '{print $1, $2}')"
+  echo "# wca_vs_lammps.sh $rounds \"$sizes\" \"$ranks_list\""
+  build_header
   echo "# each line: N ranks round program atom-steps/s peak-RSS-bytes(summed over ranks)"
 } >"$log"
 
@@ -87,13 +77,11 @@ for nc in $sizes; do
       echo "${rate[emergent]} ${rate[lammps]} ${rate[lammps-opt]}" \
         | awk '{f = ($2 > $3 ? $2 : $3); print $1 / f}' >>"$work/ratios"
     done
-    ratio=$(median <"$work/ratios")
-    lo=$(sort -g "$work/ratios" | head -n 1)
-    hi=$(sort -g "$work/ratios" | tail -n 1)
-    printf '| %d | %d | %.3g | %.0f | %.3g | %.0f | %.3g | %.0f | %.2f (%.2f-%.2f) |\n' "$n" "$np" \
+    printf '| %d | %d | %.3g | %.0f | %.3g | %.0f | %.3g | %.0f | %.2f (%s) |\n' "$n" "$np" \
       "$(median <"$work/rate.emergent")" "$(median <"$work/mem.emergent")" \
       "$(median <"$work/rate.lammps")" "$(median <"$work/mem.lammps")" \
-      "$(median <"$work/rate.lammps-opt")" "$(median <"$work/mem.lammps-opt")" "$ratio" "$lo" "$hi" \
+      "$(median <"$work/rate.lammps-opt")" "$(median <"$work/mem.lammps-opt")" \
+      "$(median <"$work/ratios")" "$(min_max "$work/ratios")" \
       | tee -a "$log.table"
   done
 done
