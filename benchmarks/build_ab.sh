@@ -2,7 +2,7 @@
 # Two builds of emergent side by side on the same state: the scene runs SETTLE steps once with
 # build A (the older one: a newer build reads its checkpoint, not always the other way round)
 # and leaves a checkpoint; A and B then continue it for TIMED steps in turn, REPEATS
-# rounds, so the machine's load drifts alike over both. Reports each build's median rate and
+# rounds, the one that runs first alternating, so the machine's load drifts alike over both. Reports each build's median rate and
 # the median over rounds of the ratio B / A (the figure to quote: noise in one round cancels).
 # usage: benchmarks/build_ab.sh RANKS SETTLE TIMED REPEATS EXE_A EXE_B SCENE [--set key=value]...
 set -euo pipefail
@@ -19,7 +19,10 @@ rate() {
   summary_value "$work/s.json" atom_steps_per_second
 }
 for r in $(seq "$repeats"); do
-  a=$(rate "$exe_a" a) b=$(rate "$exe_b" b)
+  # Which build runs first alternates from round to round.
+  if [ $((r % 2)) -eq 1 ]; then a=$(rate "$exe_a" a); b=$(rate "$exe_b" b)
+  else b=$(rate "$exe_b" b); a=$(rate "$exe_a" a); fi
+  echo "# round $r: A $a B $b" >&2
   echo "$a" >>"$work/a"; echo "$b" >>"$work/b"
   awk -v a="$a" -v b="$b" 'BEGIN {print b / a}' >>"$work/ratio"
 done

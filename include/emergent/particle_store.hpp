@@ -86,8 +86,9 @@ public:
 
     /// Reorders the owned particles: new index k holds the particle that was at order[k]
     /// (distinct indices). `order` may select fewer than all (a resize_owned() then drops the
-    /// rest); done in place.
-    void permute_owned(const std::vector<std::uint32_t>& order);
+    /// rest). Only `fields` are moved (the others are left as they were: e.g. forces that are
+    /// recomputed next).
+    void permute_owned(const std::vector<std::uint32_t>& order, unsigned fields = kAllFields);
 
     /// Releases capacity beyond the present size (after the particles are placed: growth by
     /// appending one at a time may leave arrays nearly twice as large as needed).

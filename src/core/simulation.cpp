@@ -110,7 +110,7 @@ struct Simulation::Engine {
         }
         // Cell order gives the force loop neighbours that sit close in memory.
         cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
-        store.permute_owned(order);
+        store.permute_owned(order, kAllFields & ~kForce);  // forces are recomputed after a build
         halo.build(store, *grid, ghost_width(), ghost_fields);
         cells.bin_after_sort(store.position.data(), store.size());
         // Wedge images turned by other than a quarter or half turn land inside the domain's

@@ -10,6 +10,7 @@ namespace emergent {
 void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions) {
     lo_ = lo;
     hi_ = hi;
+    centre_ = 0.5 * (lo + hi);
     const double min_cell = range / std::max(1, subdivisions);
     for (int d = 0; d < 3; ++d) {
         const double len = hi[d] - lo[d];
@@ -25,6 +26,15 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range,
         end_inner_[d] = layers + inner;
         inverse_width_[d] = 1.0 / width;
     }
+    // Binned positions lie in the grid (owned in the domain, ghosts in the shell), within
+    // `extent` of its centre in each coordinate. Each is rounded by at most extent 2^-24, a
+    // difference by twice that, a distance by sqrt(3) times that; the float arithmetic of r^2
+    // adds a few 2^-24 of the range. Doubled for margin (and for particles just outside the
+    // grid): ~1e-6 of the grid's size.
+    double extent = 0;
+    for (int d = 0; d < 3; ++d) extent = std::max(extent, 0.5 * n_[d] / inverse_width_[d]);
+    const double unit = std::ldexp(1.0, -24);
+    binned_error_ = 2 * (2 * std::sqrt(3.0) * 2 * extent * unit + 4 * range * unit);
     inner_.assign(n_cells(), 0);
     // Mark cells that lie inside the domain: their index range excludes the ghost layers.
     for (int z = 0; z < n_[2]; ++z)
@@ -83,10 +93,13 @@ void CellList::bin_after_sort(const Vec3* x, std::size_t n) {
     sorted_cell_.clear();  // good for one binning only
     count(x, n, known);
     members_.resize(n);
+    binned_.resize(n);
     std::vector<std::uint32_t> next(start_.begin(), start_.end() - 1);
     for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t slot = next[cell_[i]]++;
         members_[slot] = static_cast<std::uint32_t>(i);
+        const Vec3 r = x[i] - centre_;
+        binned_[slot] = {static_cast<float>(r.x), static_cast<float>(r.y), static_cast<float>(r.z)};
     }
 }
 

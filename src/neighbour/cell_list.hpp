@@ -16,6 +16,11 @@ namespace emergent {
 /// lies at most reach() cells apart along each axis (reach <= subdivisions). Finer cells
 /// search a volume closer to the sphere of the range: 2 subdivisions test 125 cells of
 /// (range/2)^3 instead of 27 of range^3, 42 % fewer candidates, for more cells to walk.
+/// A position in single precision, relative to a cell grid's centre: the list search's copy.
+struct BinnedPoint {
+    float x, y, z;
+};
+
 class CellList {
 public:
     void setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions = 1);
@@ -61,9 +66,20 @@ public:
     bool is_deep(int cell) const { return inner_[cell] == 2; }
     const std::uint32_t* members_begin(int cell) const { return &members_[start_[cell]]; }
     const std::uint32_t* members_end(int cell) const { return &members_[start_[cell + 1]]; }
-    /// Slots of cell c are [first(c), first(c + 1)) in members.
+    /// Slots of cell c are [first(c), first(c + 1)) in members and binned positions.
     std::uint32_t first(int cell) const { return start_[cell]; }
     const std::uint32_t* members() const { return members_.data(); }
+    /// Positions in cell order, in single precision relative to the grid's centre (a copy made
+    /// by bin(), half the bytes of the positions), so a search streams through memory.
+    const BinnedPoint* binned_positions() const { return binned_.data(); }
+    /// Bound on the error of a distance between two binned positions (their rounding to single
+    /// precision): a search widens its range by it, so it lists every pair the exact positions
+    /// put in range (and a few just beyond, which cost nothing but a zero force).
+    double binned_distance_error() const { return binned_error_; }
+    /// Volume of the grid, ghost shell included.
+    double grid_volume() const {
+        return double(n_[0]) * n_[1] * n_[2] / (inverse_width_[0] * inverse_width_[1] * inverse_width_[2]);
+    }
 
 private:
     /// Cells of particles [known, n) into cell_ (those before are set), then the per-cell
@@ -78,6 +94,9 @@ private:
     std::vector<char> inner_;  ///< per cell: 0 ghost, 1 inner, 2 inner with its stencil inner
     std::vector<std::uint32_t> start_, members_, cell_;
     std::vector<std::uint32_t> sorted_cell_;  ///< cells of the last sort_order, in its order
+    std::vector<BinnedPoint> binned_;
+    Vec3 centre_{};
+    double binned_error_ = 0;
 };
 
 }  // namespace emergent

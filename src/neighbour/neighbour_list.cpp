@@ -55,10 +55,8 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
         return;
     }
     const std::size_t n_owned = store.n_owned();
-    const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
     const Int3 shape = cells.shape();
-    using Real = double;
     // Precondition (the engine sorts owned particles by cell before each build): the list is
     // stored in order of i, and inner cells earlier than i's cell hold only smaller indices.
     int previous = n_owned > 0 ? cells.cell_of(x[0]) : 0;
@@ -70,6 +68,11 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     }
     offset_.assign(n_owned + 1, 0);
     const std::uint32_t* member = cells.members();
+    // The search runs on the cells' single-precision copy, its range widened by the copy's
+    // rounding so that no pair in range is missed (benchmarks/RESULTS.md, "Memory").
+    const BinnedPoint* xb = cells.binned_positions();
+    const double padded = list_cutoff() + cells.binned_distance_error();
+    const float r2f = std::nextafter(static_cast<float>(padded * padded), 1e30f);
     // Stencil: the cells within reach as offsets of the linear index, in increasing order, so
     // that neighbouring cells of one row (consecutive indices, consecutive slots) merge into
     // one range below. Inner cells always have all of them: the grid's ghost shell is at least
@@ -88,6 +91,17 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
             later_rows.push_back((dz * shape.y + dy) * shape.x - reach.x);
     const int row_cells = 2 * reach.x + 1;
     std::vector<std::uint32_t> range_begin(stencil.size() + 1), range_end(stencil.size() + 1);
+    // Room for the list in one allocation, made before the search (the old entries are of no
+    // use, so they are freed first): growing it while searching holds old and new at once, up
+    // to twice the list at the peak. The estimate is the last build's count, or at the first
+    // build the pairs of a uniform fluid of this density, 1.3x (an fcc lattice has 1.25x).
+    const double pairs_uniform = 0.5 * 4.18879 * std::pow(list_cutoff(), 3) * store.size() / cells.grid_volume();
+    const std::size_t expected = n_pairs_ > 0 ? n_pairs_ + n_pairs_ / 8
+                                              : static_cast<std::size_t>(1.3 * pairs_uniform * n_owned);
+    if (neighbour_.size() < expected + 1024) {
+        std::vector<std::uint32_t>().swap(neighbour_);
+        neighbour_.resize(expected + 1024);
+    }
     std::size_t count = 0;
     for (int c = 0; c < cells.n_cells(); ++c) {
         if (!cells.is_inner(c) || cells.first(c) == cells.first(c + 1)) continue;
@@ -121,20 +135,14 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
             if (i >= n_owned)
                 throw std::logic_error("NeighbourList::build: a ghost lies inside the domain; "
                                        "this region needs the general search");
-            // Positions are read through the cell members: owned particles are sorted by cell,
-            // so most reads stream. A binned copy of the positions saved 3.6 % of the build's
-            // instructions (callgrind) for 24 B a particle (benchmarks/RESULTS.md, "Memory").
-            const Vec3 xi = x[i];
-            // Grown by an eighth, not doubled: the list is the largest array after the
-            // particle store, and the next build reuses its room.
-            if (neighbour_.size() < count + bound) neighbour_.resize(count + bound + (count + bound) / 8);
+            const BinnedPoint xi = xb[a];
+            if (neighbour_.size() < count + bound) neighbour_.resize(count + bound + (count + bound) / 2);
             std::uint32_t* out = neighbour_.data();
             // Branch-free append: write every candidate, advance only past those in range.
             auto consider = [&](std::uint32_t b) {
-                const std::uint32_t j = member[b];
-                const Real dx = xi.x - x[j].x, dy = xi.y - x[j].y, dz = xi.z - x[j].z;
-                out[count] = j;
-                count += (dx * dx + dy * dy + dz * dz < r2max) ? 1 : 0;
+                const float dx = xi.x - xb[b].x, dy = xi.y - xb[b].y, dz = xi.z - xb[b].z;
+                out[count] = member[b];
+                count += (dx * dx + dy * dy + dz * dz < r2f) ? 1 : 0;
             };
             for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);
             for (int r = 0; r < n_ranges; ++r)

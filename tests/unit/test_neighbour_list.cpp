@@ -54,16 +54,23 @@ void check_list_against_brute_force(int subdivisions, bool general) {
             EXPECT_TRUE(directed.insert({a, b}).second) << "entry listed twice: " << a << " " << b;
             coverage[{std::min(a, b), std::max(a, b)}] += j < store.n_owned() ? 2 : 1;
         }
-    std::set<std::pair<long, long>> expected;
+    // Every pair in range is listed; the cell search (single precision, its range widened by
+    // the rounding) may also list pairs within that widening, never further.
+    std::set<std::pair<long, long>> expected, tolerated;
     const Vec3 len = box.length();
+    const double widened = rl + (general ? 0.0 : cells.binned_distance_error());
+    ASSERT_LT(widened, rl * (1 + 1e-5));
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j) {
             Vec3 r = store.position[i] - store.position[j];
             for (int d = 0; d < 3; ++d) r[d] -= len[d] * std::round(r[d] / len[d]);
             const long a = store.id[i], b = store.id[j];
             if (dot(r, r) < rl * rl) expected.insert({std::min(a, b), std::max(a, b)});
+            else if (dot(r, r) < widened * widened) tolerated.insert({std::min(a, b), std::max(a, b)});
         }
-    EXPECT_EQ(coverage.size(), expected.size());
+    for (const auto& [pair, count] : coverage)
+        EXPECT_TRUE(expected.count(pair) || tolerated.count(pair))
+            << "pair out of range listed: " << pair.first << " " << pair.second;
     for (const auto& pair : expected) {
         const auto it = coverage.find(pair);
         ASSERT_NE(it, coverage.end()) << "missed pair " << pair.first << " " << pair.second;
