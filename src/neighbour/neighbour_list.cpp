@@ -45,6 +45,17 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
         offset_[i + 1] = static_cast<std::uint32_t>(neighbour_.size());
     }
     n_pairs_ = neighbour_.size();
+    keep_reference(store, n_owned);
+}
+
+// The positions the list was built at. When the owned count outgrows the copy (particles
+// migrating in), the old copy is freed before the new one is made: assign() would hold both, and
+// on 2 ranks that transient (24 B per owned particle) set the run's peak memory.
+void NeighbourList::keep_reference(const ParticleStore& store, std::size_t n_owned) {
+    if (n_owned > built_at_.capacity()) {
+        std::vector<Vec3>().swap(built_at_);
+        built_at_.reserve(n_owned + n_owned / 32);
+    }
     built_at_.assign(store.position.begin(), store.position.begin() + n_owned);
 }
 
@@ -151,7 +162,7 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
         }
     }
     n_pairs_ = count;
-    built_at_.assign(store.position.begin(), store.position.begin() + n_owned);
+    keep_reference(store, n_owned);
 }
 
 double NeighbourList::max_displacement_sq(const ParticleStore& store) const {

@@ -55,6 +55,7 @@ public:
 
 private:
     void build_general(const ParticleStore& store, const CellList& cells, bool full);
+    void keep_reference(const ParticleStore& store, std::size_t n_owned);
 
     double cutoff_ = 0, skin_ = 0;
     std::size_t n_pairs_ = 0;
