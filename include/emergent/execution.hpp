@@ -1,9 +1,17 @@
 // SPDX-License-Identifier: MIT
 // The thin execution layer: runs a per-particle functor as a CPU loop (here) or a CUDA grid
-// (execution/cuda_launch.cuh). Physics lives in the functors, never in the launchers.
+// (execution/cuda_launch.cuh), and does the reductions, scans and sorts around them (here the
+// standard library's way, on CUDA CUB's; execution/cuda_algorithms.cuh). Physics lives in the
+// functors, never in the launchers. Each primitive has the same meaning on both back ends;
+// what may differ is only the order of floating-point additions (stated per primitive).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <numeric>
+#include <vector>
 
 #include "emergent/macros.hpp"
 
@@ -22,12 +30,85 @@ struct Then {
     }
 };
 
-/// Host back end: a plain loop the compiler can vectorise.
+/// Host<->device traffic of this process, counted by the back ends: whole arrays (particle
+/// data, lists) apart from scalars (a reduction's result, a flag), so a test can assert that a
+/// step moves no array. The host back end moves nothing.
+struct Transfers {
+    std::uint64_t arrays = 0, array_bytes = 0;
+    std::uint64_t scalars = 0, scalar_bytes = 0;
+};
+inline Transfers& transfers() {
+    static Transfers counts;
+    return counts;
+}
+
+/// Host back end: plain loops the compiler can vectorise.
 struct Host {};
 
 template <class Functor>
 void for_each(Host, std::size_t n, const Functor& f) {
     for (std::size_t i = 0; i < n; ++i) f(i);
+}
+
+/// Sum of f(i) over i < n. Host: added in index order, so bitwise the plain loop's result and
+/// the same run to run. CUDA: a tree order, the same run to run on one device. T: T{} and +=.
+template <class T, class F>
+T transform_sum(Host, std::size_t n, const F& f) {
+    T sum{};
+    for (std::size_t i = 0; i < n; ++i) sum += f(i);
+    return sum;
+}
+
+/// The larger of a and b, where a NaN wins: a guard taking a maximum must see it.
+template <class T>
+EMERGENT_HD EMERGENT_INLINE T max_keeping_nan(const T& a, const T& b) {
+    if (a != a) return a;
+    if (b != b) return b;
+    return a < b ? b : a;
+}
+
+/// The largest of init and f(i) over i < n; a NaN anywhere is the result (max_keeping_nan).
+/// Exact on both back ends (a maximum does not depend on the order).
+template <class T, class F>
+T transform_max(Host, std::size_t n, T init, const F& f) {
+    T best = init;
+    for (std::size_t i = 0; i < n; ++i) {
+        best = max_keeping_nan(best, f(i));
+        if (best != best) break;
+    }
+    return best;
+}
+
+/// out[i] = in[0] + ... + in[i-1] for i < n; returns the total of all n. in and out may be the
+/// same array. Integers: exact on both back ends.
+template <class T>
+T exclusive_scan(Host, const T* in, T* out, std::size_t n) {
+    T running{};
+    for (std::size_t i = 0; i < n; ++i) {
+        const T v = in[i];
+        out[i] = running;
+        running += v;
+    }
+    return running;
+}
+
+/// Sorts the pairs (keys[i], values[i]) by key, stably (equal keys keep their order), in
+/// place; keys must be below 2^key_bits (fewer bits, fewer radix passes on CUDA). Both back ends
+/// give the same order.
+inline void sort_pairs(Host, std::uint32_t* keys, std::uint32_t* values, std::size_t n,
+                       int key_bits = 32) {
+    (void)key_bits;
+    std::vector<std::uint32_t> order(n);
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+    std::vector<std::uint32_t> k(n), v(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        k[i] = keys[order[i]];
+        v[i] = values[order[i]];
+    }
+    std::copy(k.begin(), k.end(), keys);
+    std::copy(v.begin(), v.end(), values);
 }
 
 }  // namespace emergent::exec

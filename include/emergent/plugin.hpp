@@ -15,8 +15,9 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-3"  // 3: Problem::expected_particles, ParamSpec::restart, restore(saved_forces),
-                                                 //    ForceTerm::particle_fields, optional diameters
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-4"  // 4: the execution layer's reductions, scans, sorts
+                                                 //    and transfer counts (3: Problem::expected_particles,
+                                                 //    ParamSpec::restart, ForceTerm::particle_fields)
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \

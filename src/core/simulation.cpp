@@ -16,6 +16,7 @@
 #include "emergent/execution.hpp"
 #include "emergent/random.hpp"
 #include "integrate/kick_drift.hpp"
+#include "integrate/kinetic_energy.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "rigid/rigid_bodies.hpp"
@@ -182,10 +183,10 @@ struct Simulation::Engine {
 
     /// Kinetic energy of free particles and bodies (spheres of bodies count through them).
     double local_kinetic() const {
-        double k = 0;
-        for (std::size_t i = 0; i < store.n_owned(); ++i)
-            if (is_free(i)) k += 0.5 * mass[store.species[i]] * dot(store.velocity[i], store.velocity[i]);
-        return k + rigid.kinetic();
+        const integrate::FreeKineticEnergy energy{
+            store.velocity.data(), store.species.data(), mass.data(),
+            store.has_rigid_fields() ? store.body.data() : nullptr};
+        return exec::transform_sum<double>(exec::Host{}, store.n_owned(), energy) + rigid.kinetic();
     }
 
     long long n_free = 0, n_bodies = 0;

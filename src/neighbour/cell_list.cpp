@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "emergent/execution.hpp"
+
 namespace emergent {
 
 void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions) {
@@ -58,9 +60,11 @@ void CellList::count(const Vec3* x, std::size_t n, std::size_t known) {
     start_.assign(n_cells() + 1, 0);
     for (std::size_t i = 0; i < n; ++i) {
         if (i >= known) cell_[i] = static_cast<std::uint32_t>(cell_of(x[i]));
-        ++start_[cell_[i] + 1];
+        ++start_[cell_[i]];
     }
-    for (int c = 0; c < n_cells(); ++c) start_[c + 1] += start_[c];
+    // Counts to the first slot of each cell; the entry past the last cell is the total.
+    start_[n_cells()] = exec::exclusive_scan(exec::Host{}, start_.data(), start_.data(),
+                                             static_cast<std::size_t>(n_cells()));
 }
 
 void CellList::sort_order(const Vec3* x, const std::int64_t* id, std::size_t n,

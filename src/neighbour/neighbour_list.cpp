@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "emergent/error.hpp"
+#include "emergent/execution.hpp"
 
 namespace emergent {
 
@@ -166,16 +167,9 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
 }
 
 double NeighbourList::max_displacement_sq(const ParticleStore& store) const {
-    double worst = 0;
-    const Vec3* x = store.position.data();
-    for (std::size_t i = 0; i < built_at_.size(); ++i) {
-        const Vec3 r = x[i] - built_at_[i];
-        const double r2 = dot(r, r);
-        // Written so that a NaN wins the comparison and is reported.
-        if (!(r2 <= worst)) worst = std::isnan(r2) ? std::numeric_limits<double>::quiet_NaN() : r2;
-        if (std::isnan(worst)) break;
-    }
-    return worst;
+    // A NaN wins the maximum and is reported (exec::transform_max).
+    return exec::transform_max(exec::Host{}, built_at_.size(), 0.0,
+                               SquaredDisplacement{store.position.data(), built_at_.data()});
 }
 
 bool NeighbourList::needs_rebuild(const ParticleStore& store, MPI_Comm comm) const {

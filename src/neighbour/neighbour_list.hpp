@@ -12,6 +12,16 @@
 
 namespace emergent {
 
+/// |x_i - x0_i|^2: how far particle i moved since the list was built (the rebuild criterion).
+struct SquaredDisplacement {
+    const Vec3* x;
+    const Vec3* x0;
+    EMERGENT_HD double operator()(std::size_t i) const {
+        const Vec3 r = x[i] - x0[i];
+        return dot(r, r);
+    }
+};
+
 /// Half neighbour list over owned particles: pair (i, j) is listed once, under i, with j > i.
 /// Since ghosts are indexed after all owned particles, every owned–ghost pair is listed under
 /// its owned member; the rank owning the ghost lists the mirror pair, so no forces need to be

@@ -1,0 +1,76 @@
+// SPDX-License-Identifier: MIT
+// The execution layer's host primitives against plain loops and the standard library written
+// out here; their CUDA versions are compared with these in gpu_tests.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "emergent/execution.hpp"
+#include "support/execution_cases.hpp"
+
+using namespace emergent;
+
+TEST(Execution, SumIsThePlainLoopBitwise) {
+    const auto v = fixtures::spread_values(100001, 3);
+    double loop = 0;
+    for (double x : v) loop += x;
+    const double sum = exec::transform_sum<double>(exec::Host{}, v.size(), [&](std::size_t i) { return v[i]; });
+    EXPECT_EQ(sum, loop);  // bitwise: the engine's host sums keep their order
+    EXPECT_EQ(exec::transform_sum<double>(exec::Host{}, 0, [&](std::size_t i) { return v[i]; }), 0.0);
+}
+
+TEST(Execution, MaxKeepsInitAndNan) {
+    const auto v = fixtures::spread_values(5000, 4);
+    const auto f = [&](std::size_t i) { return v[i]; };
+    EXPECT_EQ(exec::transform_max(exec::Host{}, v.size(), -1e300, f), *std::max_element(v.begin(), v.end()));
+    EXPECT_EQ(exec::transform_max(exec::Host{}, 0, -7.0, f), -7.0);
+    EXPECT_EQ(exec::transform_max(exec::Host{}, v.size(), 1e300, f), 1e300);
+    auto w = v;
+    w[1234] = std::numeric_limits<double>::quiet_NaN();
+    // A NaN must win wherever it is, also against larger values after it: a guard reads it.
+    EXPECT_TRUE(std::isnan(exec::transform_max(exec::Host{}, w.size(), 0.0, [&](std::size_t i) { return w[i]; })));
+    EXPECT_TRUE(std::isnan(exec::max_keeping_nan(1.0, std::nan(""))));
+    EXPECT_TRUE(std::isnan(exec::max_keeping_nan(std::nan(""), 1.0)));
+}
+
+TEST(Execution, ExclusiveScanInPlaceAndTotal) {
+    std::vector<std::uint32_t> keys, values;
+    fixtures::repeated_keys(777, 6, 5, keys, values);
+    std::vector<std::uint32_t> expected(keys.size());
+    std::uint32_t running = 0;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        expected[i] = running;
+        running += keys[i];
+    }
+    std::vector<std::uint32_t> out(keys.size());
+    EXPECT_EQ(exec::exclusive_scan(exec::Host{}, keys.data(), out.data(), keys.size()), running);
+    EXPECT_EQ(out, expected);
+    EXPECT_EQ(exec::exclusive_scan(exec::Host{}, keys.data(), keys.data(), keys.size()), running);
+    EXPECT_EQ(keys, expected);
+    EXPECT_EQ(exec::exclusive_scan(exec::Host{}, keys.data(), keys.data(), 0), 0u);
+}
+
+TEST(Execution, SortPairsIsStable) {
+    std::vector<std::uint32_t> keys, values;
+    fixtures::repeated_keys(20000, 8, 6, keys, values);  // ~80 of each key
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> reference;
+    for (std::size_t i = 0; i < keys.size(); ++i) reference.push_back({keys[i], values[i]});
+    // Values are the original positions, so sorting pairs fully gives the stable order.
+    std::sort(reference.begin(), reference.end());
+    exec::sort_pairs(exec::Host{}, keys.data(), values.data(), keys.size(), 8);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        ASSERT_EQ(keys[i], reference[i].first) << i;
+        ASSERT_EQ(values[i], reference[i].second) << i;
+    }
+}
+
+TEST(Execution, HostMovesNothing) {
+    const exec::Transfers before = exec::transfers();
+    const auto v = fixtures::spread_values(100, 7);
+    exec::transform_sum<double>(exec::Host{}, v.size(), [&](std::size_t i) { return v[i]; });
+    EXPECT_EQ(exec::transfers().scalars, before.scalars);
+    EXPECT_EQ(exec::transfers().arrays, before.arrays);
+}
