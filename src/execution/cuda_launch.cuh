@@ -11,6 +11,8 @@
 #include <string>
 #include <type_traits>
 
+#include "emergent/macros.hpp"
+
 namespace emergent::exec {
 
 /// CUDA back end: functors must be EMERGENT_HD and hold device pointers only.

@@ -3,6 +3,7 @@
 #include <stdexcept>
 
 #include "emergent/gpu.hpp"
+#include "execution/array_memory.hpp"
 
 namespace emergent::gpu {
 
@@ -38,3 +39,7 @@ void PeriodicPairSystem::set_profiling(bool) { refuse(); }
 StepProfile PeriodicPairSystem::profile() const { refuse(); }
 
 }  // namespace emergent::gpu
+
+namespace emergent::exec {
+std::unique_ptr<ArrayMemory> cuda_device_memory() { gpu::refuse(); }
+}  // namespace emergent::exec

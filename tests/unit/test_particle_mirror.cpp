@@ -1,0 +1,126 @@
+// SPDX-License-Identifier: MIT
+// The particle arrays in a back end's memory (here the checking host memory): copies both
+// ways are exact and counted, the host's copy is poisoned while a field lives on the back end,
+// the engine's functors run on the back end's arrays, and arrays follow the store's size.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "emergent/execution.hpp"
+#include "emergent/gpu.hpp"
+#include "execution/particle_mirror.hpp"
+#include "integrate/kick_drift.hpp"
+
+using namespace emergent;
+
+namespace {
+
+ParticleStore random_store(std::size_t n, unsigned seed, bool rigid) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-5, 5);
+    ParticleStore s;
+    for (std::size_t i = 0; i < n; ++i)
+        s.add_owned({u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}, static_cast<int>(i % 2),
+                    static_cast<std::int64_t>(1000 + i));
+    if (rigid) s.enable_rigid_fields();
+    for (std::size_t i = 0; i < n; ++i) s.force[i] = {u(rng), u(rng), u(rng)};
+    return s;
+}
+
+template <class T>
+bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+bool same_bits(const ParticleStore& a, const ParticleStore& b) {
+    return same_bits(a.position, b.position) && same_bits(a.velocity, b.velocity) &&
+           same_bits(a.force, b.force) && same_bits(a.species, b.species) && same_bits(a.id, b.id) &&
+           same_bits(a.body, b.body) && same_bits(a.orientation, b.orientation);
+}
+
+}  // namespace
+
+TEST(ParticleMirror, RoundTripIsExactAndCounted) {
+    for (bool rigid : {false, true}) {
+        ParticleStore store = random_store(1000, 1, rigid);
+        const ParticleStore original = store;
+        exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+        const exec::Transfers before = exec::transfers();
+        mirror.to_backend(store, kAllFields);
+        int fields = 0;
+        std::size_t bytes = 0;
+        store.for_each_field([&](const FieldSpan& f) {
+            ++fields;
+            bytes += f.element_bytes * store.size();
+        });
+        EXPECT_EQ(exec::transfers().arrays - before.arrays, static_cast<unsigned>(fields));
+        EXPECT_EQ(exec::transfers().array_bytes - before.array_bytes, bytes);
+        EXPECT_FALSE(same_bits(store, original)) << "the host copy should be poisoned";
+        mirror.to_host(store, kAllFields);
+        EXPECT_TRUE(same_bits(store, original)) << (rigid ? "rigid" : "plain");
+        EXPECT_EQ(exec::transfers().arrays - before.arrays, 2u * fields);
+    }
+}
+
+TEST(ParticleMirror, PoisonShowsAReadBetweenSyncs) {
+    ParticleStore store = random_store(100, 2, false);
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    mirror.to_backend(store, kPosition | kSpecies);
+    // What a host loop that forgot to sync would read: NaN positions, species -1.
+    EXPECT_TRUE(std::isnan(store.position[17].x));
+    EXPECT_EQ(store.species[17], -1);
+    EXPECT_FALSE(std::isnan(store.velocity[17].x)) << "fields not moved are left alone";
+    exec::ParticleMirror plain(exec::separate_host_memory(), false);
+    ParticleStore kept = random_store(100, 2, false);
+    plain.to_backend(kept, kPosition);
+    EXPECT_FALSE(std::isnan(kept.position[17].x)) << "poisoning only in the checking variant";
+}
+
+TEST(ParticleMirror, FunctorsRunOnTheBackendArrays) {
+    ParticleStore store = random_store(500, 3, false);
+    ParticleStore reference = store;
+    const std::vector<double> inverse_mass{1.0, 0.5};
+    const integrate::KickDrift on_host{reference.position.data(), reference.velocity.data(),
+                                       reference.force.data(), reference.species.data(),
+                                       inverse_mass.data(), 0.0025, 0.005};
+    exec::for_each(exec::Host{}, reference.size(), on_host);
+
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    mirror.to_backend(store, kPosition | kVelocity | kForce | kSpecies);
+    const integrate::KickDrift on_backend{mirror.array<Vec3>(kPosition), mirror.array<Vec3>(kVelocity),
+                                          mirror.array<Vec3>(kForce), mirror.array<int>(kSpecies),
+                                          inverse_mass.data(), 0.0025, 0.005};
+    exec::for_each(exec::Host{}, mirror.size(), on_backend);
+    mirror.to_host(store, kPosition | kVelocity);
+    EXPECT_TRUE(same_bits(store.position, reference.position));
+    EXPECT_TRUE(same_bits(store.velocity, reference.velocity));
+}
+
+TEST(ParticleMirror, ArraysFollowTheStoreSize) {
+    ParticleStore store = random_store(64, 4, false);
+    exec::ParticleMirror mirror(exec::separate_host_memory(), false);
+    mirror.to_backend(store, kAllFields);
+    const double v5 = store.velocity[5].y;
+    // Ghosts appended (far more than the 1/32 room): velocities stay on the back end as they
+    // were, positions of the new size go over.
+    store.resize_ghosts(200);
+    for (std::size_t i = store.n_owned(); i < store.size(); ++i) store.position[i] = {1, 2, double(i)};
+    mirror.to_backend(store, kPosition);
+    EXPECT_EQ(mirror.size(), store.size());
+    EXPECT_EQ(mirror.array<Vec3>(kVelocity)[5].y, v5);
+    EXPECT_EQ(mirror.array<Vec3>(kPosition)[250].z, 250.0);
+    ParticleStore smaller = random_store(10, 5, false);
+    EXPECT_THROW(mirror.to_host(smaller, kPosition), std::logic_error);
+}
+
+TEST(ParticleMirror, CudaMemoryRefusedClearlyWithoutDevice) {
+    if (gpu::device_present()) GTEST_SKIP() << "a CUDA device is present";
+    try {
+        exec::cuda_device_memory();
+        FAIL() << "got CUDA memory without a device";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("GPU was requested"), std::string::npos) << e.what();
+    }
+}
