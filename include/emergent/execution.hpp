@@ -79,6 +79,15 @@ T transform_max(Host, std::size_t n, T init, const F& f) {
     return best;
 }
 
+/// The smallest i < n with pred(i) true, or n if there is none (a guard's first offender:
+/// the same particle on both back ends).
+template <class Pred>
+std::size_t first_index(Host, std::size_t n, const Pred& pred) {
+    for (std::size_t i = 0; i < n; ++i)
+        if (pred(i)) return i;
+    return n;
+}
+
 /// out[i] = in[0] + ... + in[i-1] for i < n; returns the total of all n. in and out may be the
 /// same array. Integers: exact on both back ends.
 template <class T>

@@ -15,9 +15,10 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-4"  // 4: the execution layer's reductions, scans, sorts
-                                                 //    and transfer counts (3: Problem::expected_particles,
-                                                 //    ParamSpec::restart, ForceTerm::particle_fields)
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-5"  // 4, 5: the execution layer's reductions, scans,
+                                                 //    sorts, first_index and transfer counts (3:
+                                                 //    Problem::expected_particles, ParamSpec::restart,
+                                                 //    ForceTerm::particle_fields)
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \

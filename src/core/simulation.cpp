@@ -16,7 +16,7 @@
 #include "emergent/execution.hpp"
 #include "emergent/random.hpp"
 #include "integrate/kick_drift.hpp"
-#include "integrate/kinetic_energy.hpp"
+#include "integrate/particle_sums.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "rigid/rigid_bodies.hpp"
@@ -360,12 +360,11 @@ void Simulation::check_guards(const GuardLimits& limits) const {
     const ParticleStore& s = engine_->store;
     std::string problem = engine_->boundary_fault;
     const double f2max = limits.max_force * limits.max_force;
-    for (std::size_t i = 0; i < s.n_owned() && problem.empty(); ++i) {
+    const integrate::UnfitState unfit{s.position.data(), s.velocity.data(), s.force.data(), f2max};
+    const std::size_t i = problem.empty() ? exec::first_index(exec::Host{}, s.n_owned(), unfit) : s.n_owned();
+    if (i < s.n_owned()) {
         const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
-        // One sum is non-finite if any term is: a single test per particle on the fast path.
-        const double sum = x.x + x.y + x.z + v.x + v.y + v.z + f.x + f.y + f.z;
-        const bool finite = std::isfinite(sum);
-        if (finite && !(f2max > 0 && dot(f, f) > f2max)) continue;
+        const bool finite = std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z + f.x + f.y + f.z);
         std::ostringstream msg;
         if (!finite)
             msg << "particle id " << s.id[i] << " has a non-finite position, velocity or force";
@@ -374,7 +373,6 @@ void Simulation::check_guards(const GuardLimits& limits) const {
                 << " exceeds guard.max_force=" << limits.max_force
                 << " (overlapping particles or a time step too large)";
         problem = msg.str() + " at step " + std::to_string(engine_->step);
-        break;
     }
     const std::string message = decomp::first_message(engine_->comm, problem);
     if (!message.empty()) throw InstabilityError(message);
@@ -508,18 +506,14 @@ void Simulation::step(bool sample) {
 ThermoSample Simulation::measure() const {
     const Engine& e = *engine_;
     const ParticleStore& s = e.store;
-    double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
     const Vec3 len = e.box.length();
-    for (std::size_t i = 0; i < s.n_owned(); ++i) {
-        if (!e.is_free(i)) continue;
-        const double m = e.mass[s.species[i]];
-        const Int3 n = s.image[i];
-        const Vec3 x = s.position[i] + Vec3{n.x * len.x, n.y * len.y, n.z * len.z};
-        const Vec3 l = m * cross(x, s.velocity[i]);
-        for (int d = 0; d < 3; ++d) v[3 + d] += m * s.velocity[i][d], v[6 + d] += l[d];
-    }
+    const integrate::Momenta free = exec::transform_sum<integrate::Momenta>(
+        exec::Host{}, s.n_owned(),
+        integrate::FreeMomenta{s.position.data(), s.velocity.data(), s.image.data(), s.species.data(),
+                               e.mass.data(), s.has_rigid_fields() ? s.body.data() : nullptr, len});
     const Vec3 pb = e.rigid.momentum(), lb = e.rigid.angular_momentum(len);
-    for (int d = 0; d < 3; ++d) v[3 + d] += pb[d], v[6 + d] += lb[d];
+    double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
+    for (int d = 0; d < 3; ++d) v[3 + d] = free.linear[d] + pb[d], v[6 + d] = free.angular[d] + lb[d];
     decomp::sum_in_place(e.comm, v, 9);
     ThermoSample t;
     t.step = e.step;

@@ -70,6 +70,19 @@ struct Sum {
     }
 };
 
+struct Min {
+    template <class T>
+    __device__ T operator()(const T& a, const T& b) const { return b < a ? b : a; }
+};
+
+/// i where pred(i) holds, else n: the smallest of these is the first offender.
+template <class Pred>
+struct IndexIf {
+    Pred pred;
+    std::size_t n;
+    EMERGENT_HD std::size_t operator()(std::size_t i) const { return pred(i) ? i : n; }
+};
+
 struct MaxKeepingNan {
     template <class T>
     __device__ T operator()(const T& a, const T& b) const { return max_keeping_nan(a, b); }
@@ -117,6 +130,12 @@ T transform_sum(Cuda backend, std::size_t n, const F& f) {
 template <class T, class F>
 T transform_max(Cuda backend, std::size_t n, T init, const F& f) {
     return cuda_detail::reduce(backend, n, init, f, cuda_detail::MaxKeepingNan{});
+}
+
+/// See the host version.
+template <class Pred>
+std::size_t first_index(Cuda backend, std::size_t n, const Pred& pred) {
+    return cuda_detail::reduce(backend, n, n, cuda_detail::IndexIf<Pred>{pred, n}, cuda_detail::Min{});
 }
 
 /// See the host version; in and out are device arrays and may be the same.

@@ -5,8 +5,10 @@
 #include <sstream>
 
 #include "emergent/error.hpp"
+#include "emergent/execution.hpp"
 #include "force/dispatch.hpp"
 #include "force/granular_contact.hpp"
+#include "force/uniform_field.hpp"
 #include "neighbour/neighbour_list.hpp"
 
 namespace emergent {
@@ -132,15 +134,15 @@ public:
     double cutoff() const override { return 0; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
                     bool sample, ForceSums& sums) const override {
-        // Raw pointers and the sampling in its own loop: the force loop is then a plain
-        // streaming add (it runs every step for every particle).
-        const double* mass = c.mass->data();
-        const int* species = s.species.data();
-        Vec3* force = s.force.data();
+        // The sampling in its own pass: the force pass is then a plain streaming add (it runs
+        // every step for every particle).
         const std::size_t n = list.n_owned();
-        for (std::size_t i = 0; i < n; ++i) force[i] += mass[species[i]] * g_;
+        exec::for_each(exec::Host{}, n,
+                       force::AddUniformField{s.force.data(), s.species.data(), c.mass->data(), g_});
         if (!sample) return;
-        for (std::size_t i = 0; i < n; ++i) sums.potential -= mass[species[i]] * dot(g_, s.position[i]);
+        sums.potential += exec::transform_sum<double>(
+            exec::Host{}, n,
+            force::UniformFieldEnergy{s.position.data(), s.species.data(), c.mass->data(), g_});
     }
 
 private:

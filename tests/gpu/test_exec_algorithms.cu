@@ -104,3 +104,22 @@ TEST(CudaExecution, SortPairsGivesTheHostOrder) {
         EXPECT_EQ(on_host(dv), values) << bits << " key bits (stable: equal keys keep their order)";
     }
 }
+
+namespace {
+struct Big {
+    const double* v;
+    EMERGENT_HD bool operator()(std::size_t i) const { return fabs(v[i]) > 1e5; }
+};
+}  // namespace
+
+TEST(CudaExecution, FirstIndexAgreesWithHost) {
+    SKIP_WITHOUT_DEVICE();
+    gpu::select_device();
+    const auto v = fixtures::spread_values(1000003, 15);
+    auto d = on_device(v);
+    const std::size_t host = exec::first_index(exec::Host{}, v.size(), Big{v.data()});
+    ASSERT_LT(host, v.size());
+    EXPECT_EQ(exec::first_index(exec::Cuda{}, v.size(), Big{d.data()}), host);
+    auto none = on_device(std::vector<double>(1000, 1.0));
+    EXPECT_EQ(exec::first_index(exec::Cuda{}, 1000, Big{none.data()}), 1000u);
+}

@@ -74,3 +74,17 @@ TEST(Execution, HostMovesNothing) {
     EXPECT_EQ(exec::transfers().scalars, before.scalars);
     EXPECT_EQ(exec::transfers().arrays, before.arrays);
 }
+
+TEST(Execution, FirstIndexFindsTheFirstOffender) {
+    const auto v = fixtures::spread_values(10000, 8);
+    const auto big = [&](std::size_t i) { return std::fabs(v[i]) > 1e5; };
+    std::size_t expected = v.size();
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (big(i)) {
+            expected = i;
+            break;
+        }
+    ASSERT_LT(expected, v.size()) << "the case needs an offender";
+    EXPECT_EQ(exec::first_index(exec::Host{}, v.size(), big), expected);
+    EXPECT_EQ(exec::first_index(exec::Host{}, v.size(), [](std::size_t) { return false; }), v.size());
+}
