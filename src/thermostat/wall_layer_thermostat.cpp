@@ -4,7 +4,9 @@
 #include <stdexcept>
 
 #include "decomposition/reductions.hpp"
+#include "emergent/execution.hpp"
 #include "emergent/wall_layer.hpp"
+#include "thermostat/wall_layer_rescale.hpp"
 
 namespace emergent {
 
@@ -18,21 +20,14 @@ WallLayerThermostat::WallLayerThermostat(int axis, double lo, double hi, double 
 void WallLayerThermostat::apply(ParticleStore& store, const std::vector<double>& mass,
                                 MPI_Comm comm, long long step) {
     if (step % interval_ != 0) return;
-    auto inside = [&](std::size_t i) {
-        const double s = store.position[i][axis_];
-        return s >= lo_ && s < hi_;
-    };
+    const thermostat::InLayer layer{axis_, lo_, hi_};
+    const thermostat::LayerSums local = exec::transform_sum<thermostat::LayerSums>(
+        exec::Host{}, store.n_owned(),
+        thermostat::LayerMember{store.position.data(), store.velocity.data(), store.species.data(),
+                                mass.data(), layer});
     // Mass, momentum, 2 x kinetic energy and number of the layer's particles.
-    double all[6] = {0, 0, 0, 0, 0, 0};
-    for (std::size_t i = 0; i < store.n_owned(); ++i) {
-        if (!inside(i)) continue;
-        const double m = mass[store.species[i]];
-        const Vec3& v = store.velocity[i];
-        all[0] += m;
-        all[1] += m * v.x, all[2] += m * v.y, all[3] += m * v.z;
-        all[4] += m * dot(v, v);
-        all[5] += 1;
-    }
+    double all[6] = {local.mass, local.momentum.x, local.momentum.y, local.momentum.z,
+                     local.twice_kinetic, local.count};
     decomp::sum_in_place(comm, all, 6);
     const double n = all[5];
     // Two constraints (the zeroed mean flow along the wall): 3 n - 2 degrees of freedom.
@@ -43,8 +38,9 @@ void WallLayerThermostat::apply(ParticleStore& store, const std::vector<double>&
     const double dof = 3 * n - 2;
     if (!(twice_kinetic > 0)) return;
     const double factor = std::sqrt(temperature_ * dof / twice_kinetic);
-    for (std::size_t i = 0; i < store.n_owned(); ++i)
-        if (inside(i)) store.velocity[i] = factor * (store.velocity[i] - drift);
+    exec::for_each(exec::Host{}, store.n_owned(),
+                   thermostat::RescaleLayer{store.position.data(), store.velocity.data(), layer,
+                                            factor, drift});
     energy_ += 0.5 * (factor * factor * twice_kinetic - all[4]);
 }
 
