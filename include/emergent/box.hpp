@@ -53,7 +53,7 @@ struct Box {
 
     EMERGENT_HD Vec3 length() const { return hi - lo; }
     /// x moved into [lo, hi) along the periodic axes (the image every rank agrees on).
-    Vec3 primary_image(Vec3 x) const {
+    EMERGENT_HD Vec3 primary_image(Vec3 x) const {
         for (int d = 0; d < 3; ++d) {
             if (!periodic[d]) continue;
             const Real l = hi[d] - lo[d];

@@ -59,6 +59,16 @@ T transform_sum(Host, std::size_t n, const F& f) {
     return sum;
 }
 
+/// init + the sum of f(i) over the i < n where pred(i) holds: for work on the few particles a
+/// cheap test picks out (those crossing a wall). Host: added to init in index order, so bitwise
+/// a running total kept by a plain loop. CUDA: a tree order, then added to init.
+template <class T, class Pred, class F>
+T transform_sum_if(Host, std::size_t n, T init, const Pred& pred, const F& f) {
+    for (std::size_t i = 0; i < n; ++i)
+        if (pred(i)) init += f(i);
+    return init;
+}
+
 /// The larger of a and b, where a NaN wins: a guard taking a maximum must see it.
 template <class T>
 EMERGENT_HD EMERGENT_INLINE T max_keeping_nan(const T& a, const T& b) {

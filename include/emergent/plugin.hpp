@@ -15,8 +15,9 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-5"  // 4, 5: the execution layer's reductions, scans,
-                                                 //    sorts, first_index and transfer counts (3:
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-6"  // 4-6: the execution layer's reductions, scans,
+                                                 //    sorts, first_index, transform_sum_if, transfer
+                                                 //    counts; Box::primary_image on devices (3:
                                                  //    Problem::expected_particles, ParamSpec::restart,
                                                  //    ForceTerm::particle_fields)
 

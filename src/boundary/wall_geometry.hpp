@@ -95,41 +95,56 @@ struct WallGeometry {
     }
 };
 
-/// Calls cross(i) for each particle i in [0, n) beyond the wall (not on its fluid side). Every
-/// particle is tested at every step and few cross, so the test is written out per wall kind
-/// and axis with the wall's numbers in registers; it is
-/// WallGeometry::on_fluid_side's test (host loop; tested against it for every kind, axis, side).
-template <class Cross>
-void for_each_crossing(const WallShape& shape, const Vec3* x, std::size_t n, Cross&& cross) {
+/// The per-step test "is x beyond the wall" (not on its fluid side), written out per wall kind
+/// and axis with the wall's numbers in registers: every particle is tested at every step and
+/// few cross. It is WallGeometry::on_fluid_side's test, negated (tested against it for every
+/// kind, axis and side).
+template <int Axis>
+struct BeyondPlane {
+    double side, at;
+    EMERGENT_HD bool operator()(const Vec3& p) const { return !(side * (p[Axis] - at) >= 0); }
+};
+
+/// Radial distance squared from the axis, summed in the order dot() sums it (0 for the axis).
+template <int Axis>
+EMERGENT_HD inline double radial_sq(const Vec3& r) {
+    if (Axis == 0) return 0.0 * 0.0 + r.y * r.y + r.z * r.z;
+    if (Axis == 1) return r.x * r.x + 0.0 * 0.0 + r.z * r.z;
+    return r.x * r.x + r.y * r.y + 0.0 * 0.0;
+}
+
+/// Beyond a cylinder whose fluid lies outside (Outside) or inside it.
+template <int Axis, bool Outside>
+struct BeyondCylinder {
+    Vec3 centre;
+    double r2;
+    EMERGENT_HD bool operator()(const Vec3& p) const {
+        const double q = radial_sq<Axis>(p - centre);
+        return Outside ? !(q >= r2) : !(q <= r2);
+    }
+};
+
+/// Calls visit(beyond) with the test for this wall: the one place the wall's kind, axis and
+/// side become a type.
+template <class Visit>
+void with_crossing_test(const WallShape& shape, Visit&& visit) {
+    const bool plane = shape.kind == WallShape::Kind::Plane;
+    const double r2 = shape.radius * shape.radius;
+    const bool outside = shape.side > 0;
     const double side = shape.side;
-    auto scan = [&](auto beyond) {
-        for (std::size_t i = 0; i < n; ++i)
-            if (beyond(x[i])) cross(i);
-    };
-    auto plane = [&](auto coordinate) {
-        const double at = shape.position;
-        scan([=](const Vec3& p) { return !(side * (coordinate(p) - at) >= 0); });
-    };
-    // Radial distance squared from the axis, summed in the order dot() sums it.
-    auto cylinder = [&](auto radial_sq) {
-        const Vec3 c = shape.centre;
-        const double r2 = shape.radius * shape.radius;
-        if (shape.side > 0)
-            scan([=](const Vec3& p) { return !(radial_sq(p - c) >= r2); });
-        else
-            scan([=](const Vec3& p) { return !(radial_sq(p - c) <= r2); });
-    };
-    const bool is_plane = shape.kind == WallShape::Kind::Plane;
     switch (shape.axis) {
     case 0:
-        if (is_plane) return plane([](const Vec3& p) { return p.x; });
-        return cylinder([](const Vec3& r) { return 0.0 * 0.0 + r.y * r.y + r.z * r.z; });
+        if (plane) return visit(BeyondPlane<0>{side, shape.position});
+        return outside ? visit(BeyondCylinder<0, true>{shape.centre, r2})
+                       : visit(BeyondCylinder<0, false>{shape.centre, r2});
     case 1:
-        if (is_plane) return plane([](const Vec3& p) { return p.y; });
-        return cylinder([](const Vec3& r) { return r.x * r.x + 0.0 * 0.0 + r.z * r.z; });
+        if (plane) return visit(BeyondPlane<1>{side, shape.position});
+        return outside ? visit(BeyondCylinder<1, true>{shape.centre, r2})
+                       : visit(BeyondCylinder<1, false>{shape.centre, r2});
     default:
-        if (is_plane) return plane([](const Vec3& p) { return p.z; });
-        return cylinder([](const Vec3& r) { return r.x * r.x + r.y * r.y + 0.0 * 0.0; });
+        if (plane) return visit(BeyondPlane<2>{side, shape.position});
+        return outside ? visit(BeyondCylinder<2, true>{shape.centre, r2})
+                       : visit(BeyondCylinder<2, false>{shape.centre, r2});
     }
 }
 

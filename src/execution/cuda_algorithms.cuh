@@ -75,6 +75,14 @@ struct Min {
     __device__ T operator()(const T& a, const T& b) const { return b < a ? b : a; }
 };
 
+/// f(i) where pred(i) holds, else T{}.
+template <class T, class Pred, class F>
+struct ApplyIf {
+    Pred pred;
+    F f;
+    EMERGENT_HD T operator()(std::size_t i) const { return pred(i) ? f(i) : T{}; }
+};
+
 /// i where pred(i) holds, else n: the smallest of these is the first offender.
 template <class Pred>
 struct IndexIf {
@@ -130,6 +138,14 @@ T transform_sum(Cuda backend, std::size_t n, const F& f) {
 template <class T, class F>
 T transform_max(Cuda backend, std::size_t n, T init, const F& f) {
     return cuda_detail::reduce(backend, n, init, f, cuda_detail::MaxKeepingNan{});
+}
+
+/// See the host version: the selected terms in a tree order, then added to init.
+template <class T, class Pred, class F>
+T transform_sum_if(Cuda backend, std::size_t n, T init, const Pred& pred, const F& f) {
+    init += cuda_detail::reduce(backend, n, T{}, cuda_detail::ApplyIf<T, Pred, F>{pred, f},
+                                cuda_detail::Sum{});
+    return init;
 }
 
 /// See the host version.

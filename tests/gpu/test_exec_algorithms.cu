@@ -123,3 +123,15 @@ TEST(CudaExecution, FirstIndexAgreesWithHost) {
     auto none = on_device(std::vector<double>(1000, 1.0));
     EXPECT_EQ(exec::first_index(exec::Cuda{}, 1000, Big{none.data()}), 1000u);
 }
+
+TEST(CudaExecution, SumIfAgreesWithHost) {
+    SKIP_WITHOUT_DEVICE();
+    gpu::select_device();
+    const auto v = fixtures::spread_values(1000003, 16);
+    auto d = on_device(v);
+    const double host = exec::transform_sum_if(exec::Host{}, v.size(), 12.5, Big{v.data()}, Read{v.data()});
+    const double device = exec::transform_sum_if(exec::Cuda{}, v.size(), 12.5, Big{d.data()}, Read{d.data()});
+    double magnitude = 12.5;
+    for (double x : v) magnitude += fabs(x) > 1e5 ? fabs(x) : 0;
+    EXPECT_LE(fabs(device - host), v.size() * std::numeric_limits<double>::epsilon() * magnitude);
+}

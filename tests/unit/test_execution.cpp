@@ -88,3 +88,15 @@ TEST(Execution, FirstIndexFindsTheFirstOffender) {
     EXPECT_EQ(exec::first_index(exec::Host{}, v.size(), big), expected);
     EXPECT_EQ(exec::first_index(exec::Host{}, v.size(), [](std::size_t) { return false; }), v.size());
 }
+
+TEST(Execution, SumIfIsTheRunningTotalOfAPlainLoop) {
+    const auto v = fixtures::spread_values(20000, 9);
+    const auto few = [&](std::size_t i) { return v[i] > 1e4; };  // a few per cent of them
+    double loop = 12.5;
+    int picked = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (few(i)) loop += v[i], ++picked;
+    ASSERT_GT(picked, 10);
+    ASSERT_LT(picked, 2000);
+    EXPECT_EQ(exec::transform_sum_if(exec::Host{}, v.size(), 12.5, few, [&](std::size_t i) { return v[i]; }), loop);
+}

@@ -40,8 +40,10 @@ TEST(WallCrossing, ScanFindsExactlyTheParticlesNotOnTheFluidSide) {
                 std::vector<std::size_t> expected, found;
                 for (std::size_t i = 0; i < points.size(); ++i)
                     if (!wall.on_fluid_side(points[i])) expected.push_back(i);
-                boundary::for_each_crossing(shape, points.data(), points.size(),
-                                            [&](std::size_t i) { found.push_back(i); });
+                boundary::with_crossing_test(shape, [&](auto beyond) {
+                    for (std::size_t i = 0; i < points.size(); ++i)
+                        if (beyond(points[i])) found.push_back(i);
+                });
                 SCOPED_TRACE(std::string(plane ? "plane" : "cylinder") + " axis " +
                              std::to_string(axis) + " side " + std::to_string(side));
                 EXPECT_EQ(found, expected);
