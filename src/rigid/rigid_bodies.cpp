@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "emergent/error.hpp"
+#include "emergent/execution.hpp"
 #include "rigid/no_squish.hpp"
 
 namespace emergent::rigid {
@@ -22,6 +23,11 @@ int RigidBodies::add_kind(const BodyKind& kind, const std::vector<double>& speci
         kind.diameters.size() != kind.positions.size())
         throw InputError("rigid body: each constituent needs a position, species and diameter");
     frames_.push_back(principal_frame(shape));
+    const BodyFrame& f = frames_.back();
+    frame_mass_.push_back(f.mass);
+    frame_inertia_.push_back(f.inertia);
+    frame_positions_.insert(frame_positions_.end(), f.positions.begin(), f.positions.end());
+    frame_first_.push_back(static_cast<std::uint32_t>(frame_positions_.size()));
     kinds_.push_back(kind);
     kind_masses_.push_back(shape.masses);
     max_extent_ = std::max(max_extent_, frames_.back().extent);
@@ -56,15 +62,10 @@ void RigidBodies::drop_constituents(ParticleStore& store) const {
     store.resize_owned(keep.size());
 }
 
-void RigidBodies::place(ParticleStore& store, std::size_t b, bool velocities_only) const {
-    const BodyFrame& f = frames_[bodies_.species[b]];
-    const Vec3 R = bodies_.position[b], V = bodies_.velocity[b], w = omega_space(b);
-    for (std::size_t k = 0; k < f.positions.size(); ++k) {
-        const std::uint32_t i = index_[first_[b] + k];
-        const Vec3 arm = rotate(bodies_.orientation[b], f.positions[k]);
-        if (!velocities_only) store.position[i] = R + arm;
-        store.velocity[i] = V + cross(w, arm);
-    }
+BodyState RigidBodies::state() const {
+    auto& b = const_cast<ParticleStore&>(bodies_);
+    return {b.position.data(), b.velocity.data(), b.force.data(), b.orientation.data(),
+            b.angular_momentum.data(), b.torque.data(), b.species.data()};
 }
 
 void RigidBodies::append_constituents(ParticleStore& store) const {
@@ -98,70 +99,34 @@ void RigidBodies::index_constituents(const ParticleStore& store) {
 }
 
 void RigidBodies::kick_drift(ParticleStore& store, double kick, double drift) {
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        const BodyFrame& f = frames_[bodies_.species[b]];
-        bodies_.velocity[b] += (kick / f.mass) * bodies_.force[b];
-        bodies_.position[b] += drift * bodies_.velocity[b];
-        Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b], f.inertia};
-        torque_kick(r, bodies_.torque[b], kick);
-        rotate_freely(r, drift);
-        bodies_.orientation[b] = r.q;
-        bodies_.angular_momentum[b] = r.p;
-        place(store, b, false);
-    }
+    exec::for_each(exec::Host{}, bodies_.n_owned(),
+                   BodyKickDrift{state(), frame_table(), constituents(), store.position.data(),
+                                 store.velocity.data(), kick, drift});
 }
 
 void RigidBodies::sum_forces(const ParticleStore& store) {
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        Vec3 F{0, 0, 0}, T{0, 0, 0};
-        for (std::uint32_t k = first_[b]; k < first_[b + 1]; ++k) {
-            const std::uint32_t i = index_[k];
-            F += store.force[i];
-            T += cross(store.position[i] - bodies_.position[b], store.force[i]);
-        }
-        bodies_.force[b] = F;
-        bodies_.torque[b] = T;
-    }
+    exec::for_each(exec::Host{}, bodies_.n_owned(),
+                   BodyForceAndTorque{state(), constituents(), store.position.data(), store.force.data()});
 }
 
 void RigidBodies::kick(ParticleStore& store, double kick) {
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        const BodyFrame& f = frames_[bodies_.species[b]];
-        bodies_.velocity[b] += (kick / f.mass) * bodies_.force[b];
-        Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b], f.inertia};
-        torque_kick(r, bodies_.torque[b], kick);
-        bodies_.angular_momentum[b] = r.p;
-        place(store, b, true);
-    }
+    exec::for_each(exec::Host{}, bodies_.n_owned(),
+                   BodyKick{state(), frame_table(), constituents(), store.position.data(),
+                            store.velocity.data(), kick});
 }
 
 double RigidBodies::kinetic() const {
-    double k = 0;
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        const BodyFrame& f = frames_[bodies_.species[b]];
-        const Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b], f.inertia};
-        k += 0.5 * f.mass * dot(bodies_.velocity[b], bodies_.velocity[b]) + rotational_energy(r);
-    }
-    return k;
+    return exec::transform_sum<double>(exec::Host{}, bodies_.n_owned(), BodyKinetic{state(), frame_table()});
 }
 
 Vec3 RigidBodies::momentum() const {
-    Vec3 p{0, 0, 0};
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b)
-        p += frames_[bodies_.species[b]].mass * bodies_.velocity[b];
-    return p;
+    return exec::transform_sum<Vec3>(exec::Host{}, bodies_.n_owned(), BodyMomentum{state(), frame_table()});
 }
 
 Vec3 RigidBodies::angular_momentum(const Vec3& box_length) const {
-    Vec3 l{0, 0, 0};
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        const BodyFrame& f = frames_[bodies_.species[b]];
-        const Int3 n = bodies_.image[b];
-        const Vec3 R = bodies_.position[b] + Vec3{n.x * box_length.x, n.y * box_length.y, n.z * box_length.z};
-        const Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b], f.inertia};
-        l += f.mass * cross(R, bodies_.velocity[b]) + rotate(r.q, body_angular_momentum(r));
-    }
-    return l;
+    return exec::transform_sum<Vec3>(
+        exec::Host{}, bodies_.n_owned(),
+        BodyAngularMomentum{state(), frame_table(), bodies_.image.data(), box_length});
 }
 
 }  // namespace emergent::rigid

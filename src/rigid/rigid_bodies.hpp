@@ -9,6 +9,7 @@
 #include "decomposition/migration.hpp"
 #include "emergent/particle_store.hpp"
 #include "rigid/body_frame.hpp"
+#include "rigid/body_motion.hpp"
 
 namespace emergent::rigid {
 
@@ -63,8 +64,14 @@ public:
     Vec3 angular_momentum(const Vec3& box_length) const;
 
 private:
-    void place(ParticleStore& store, std::size_t b, bool velocities_only) const;
     Vec3 omega_space(std::size_t b) const;
+    /// The owned bodies' arrays, the frames and the constituent index, for the functors
+    /// (the const passes only read through them).
+    BodyState state() const;
+    FrameTable frame_table() const {
+        return {frame_mass_.data(), frame_inertia_.data(), frame_first_.data(), frame_positions_.data()};
+    }
+    ConstituentIndex constituents() const { return {first_.data(), index_.data()}; }
 
     std::vector<BodyKind> kinds_;
     std::vector<BodyFrame> frames_;
@@ -73,6 +80,10 @@ private:
     ParticleStore bodies_;
     decomp::Migration migration_;
     std::vector<std::uint32_t> first_, index_;  // constituent indices of body b: index_[first_[b]..]
+    // frames_ as flat arrays (FrameTable)
+    std::vector<double> frame_mass_;
+    std::vector<Vec3> frame_inertia_, frame_positions_;
+    std::vector<std::uint32_t> frame_first_{0};
 };
 
 }  // namespace emergent::rigid
