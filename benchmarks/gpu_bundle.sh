@@ -26,7 +26,7 @@ for p in "${programs[@]}"; do
   ldd "$build/bin/$p" | awk '/=> \// {print $3}' | while read -r lib; do
     case $(basename "$lib") in
       libc.so*|libm.so*|libpthread.so*|libdl.so*|librt.so*|ld-linux*) ;;
-      *) cp -L -n "$lib" "$dir/lib/" ;;
+      *) [ -e "$dir/lib/$(basename "$lib")" ] || cp -L "$lib" "$dir/lib/" ;;
     esac
   done
 done
@@ -35,6 +35,10 @@ done
   echo "built $(date -u +%FT%TZ) on $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
   echo "nvcc $(/usr/local/cuda/bin/nvcc --version 2>/dev/null | sed -n 's/.*release \([0-9.]*\).*/\1/p')," \
        "CUDA flags '$(sed -n 's/^CMAKE_CUDA_FLAGS_RELEASE:[A-Z]*=//p' "$build/CMakeCache.txt")'"
+  # The newest C library version the programs and libraries ask for: the device's must be
+  # at least this (Debian 12 builds need glibc 2.36).
+  echo "needs glibc $(objdump -T "$dir"/bin/* "$dir"/lib/* 2>/dev/null | grep -o 'GLIBC_[0-9.]*' |
+                      sed 's/GLIBC_//' | sort -V | tail -n 1)"
   (cd "$dir" && find bin lib -type f -printf '%P %s\n' | sort)
 } >"$dir/MANIFEST"
 size=$(du -sm "$dir" | cut -f1)

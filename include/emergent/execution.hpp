@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <numeric>
+#include <stdexcept>
 #include <vector>
 
 #include "emergent/macros.hpp"
@@ -116,7 +117,11 @@ T exclusive_scan(Host, const T* in, T* out, std::size_t n) {
 /// give the same order.
 inline void sort_pairs(Host, std::uint32_t* keys, std::uint32_t* values, std::size_t n,
                        int key_bits = 32) {
-    (void)key_bits;
+    // Keys beyond key_bits would sort differently on CUDA (its radix passes ignore those bits).
+    if (key_bits < 32)
+        for (std::size_t i = 0; i < n; ++i)
+            if (keys[i] >> key_bits)
+                throw std::invalid_argument("sort_pairs: a key has more than key_bits bits");
     std::vector<std::uint32_t> order(n);
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),

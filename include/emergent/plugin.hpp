@@ -15,7 +15,7 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-6"  // 4-6: the execution layer's reductions, scans,
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-7"  // 4-7: the execution layer's reductions, scans,
                                                  //    sorts, first_index, transform_sum_if, transfer
                                                  //    counts; Box::primary_image on devices (3:
                                                  //    Problem::expected_particles, ParamSpec::restart,

@@ -140,7 +140,10 @@ T transform_max(Cuda backend, std::size_t n, T init, const F& f) {
     return cuda_detail::reduce(backend, n, init, f, cuda_detail::MaxKeepingNan{});
 }
 
-/// See the host version: the selected terms in a tree order, then added to init.
+/// See the host version: the selected terms in a tree order, then added to init. f may write
+/// to its own particle (a wall bounce does): it relies on CUB's reduction reading each input
+/// once, which its single-pass reduce does (not a documented promise: the device tests
+/// compare the particles' state with the host's after the pass).
 template <class T, class Pred, class F>
 T transform_sum_if(Cuda backend, std::size_t n, T init, const Pred& pred, const F& f) {
     init += cuda_detail::reduce(backend, n, T{}, cuda_detail::ApplyIf<T, Pred, F>{pred, f},
@@ -173,7 +176,9 @@ T exclusive_scan(Cuda backend, const T* in, T* out, std::size_t n) {
 }
 
 /// See the host version; keys and values are device arrays, sorted in place (a stable LSD
-/// radix sort through alternate buffers in the scratch memory).
+/// radix sort through alternate buffers in the scratch memory). Returns with the copy back
+/// still queued on the backend's stream: every later use of the scratch memory must be on that
+/// stream (the engine uses one stream per process).
 inline void sort_pairs(Cuda backend, std::uint32_t* keys, std::uint32_t* values, std::size_t n,
                        int key_bits = 32) {
     if (n < 2) return;

@@ -100,3 +100,10 @@ TEST(Execution, SumIfIsTheRunningTotalOfAPlainLoop) {
     ASSERT_LT(picked, 2000);
     EXPECT_EQ(exec::transform_sum_if(exec::Host{}, v.size(), 12.5, few, [&](std::size_t i) { return v[i]; }), loop);
 }
+
+TEST(Execution, SortPairsRefusesKeysWiderThanSaid) {
+    std::vector<std::uint32_t> keys{1, 300, 2}, values{0, 1, 2};
+    // 300 needs 9 bits: on CUDA an 8-bit sort would ignore its top bit, so the host refuses it.
+    EXPECT_THROW(exec::sort_pairs(exec::Host{}, keys.data(), values.data(), 3, 8), std::invalid_argument);
+    EXPECT_NO_THROW(exec::sort_pairs(exec::Host{}, keys.data(), values.data(), 3, 9));
+}

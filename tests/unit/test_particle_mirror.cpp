@@ -68,9 +68,10 @@ TEST(ParticleMirror, PoisonShowsAReadBetweenSyncs) {
     ParticleStore store = random_store(100, 2, false);
     exec::ParticleMirror mirror(exec::separate_host_memory(), true);
     mirror.to_backend(store, kPosition | kSpecies);
-    // What a host loop that forgot to sync would read: NaN positions, species -1.
+    // What a host loop that forgot to sync would read: NaN positions, a species (like an id,
+    // body or image count) far below any valid value, -1 included (it means a free particle).
     EXPECT_TRUE(std::isnan(store.position[17].x));
-    EXPECT_EQ(store.species[17], -1);
+    EXPECT_LT(store.species[17], -1000000);
     EXPECT_FALSE(std::isnan(store.velocity[17].x)) << "fields not moved are left alone";
     exec::ParticleMirror plain(exec::separate_host_memory(), false);
     ParticleStore kept = random_store(100, 2, false);
@@ -103,8 +104,9 @@ TEST(ParticleMirror, ArraysFollowTheStoreSize) {
     exec::ParticleMirror mirror(exec::separate_host_memory(), false);
     mirror.to_backend(store, kAllFields);
     const double v5 = store.velocity[5].y;
-    // Ghosts appended (far more than the 1/32 room): velocities stay on the back end as they
-    // were, positions of the new size go over.
+    // Positions back for the decomposition, ghosts appended (far more than the 1/32 room):
+    // velocities stay on the back end as they were, positions of the new size go over.
+    mirror.to_host(store, kPosition);
     store.resize_ghosts(200);
     for (std::size_t i = store.n_owned(); i < store.size(); ++i) store.position[i] = {1, 2, double(i)};
     mirror.to_backend(store, kPosition);
@@ -113,6 +115,22 @@ TEST(ParticleMirror, ArraysFollowTheStoreSize) {
     EXPECT_EQ(mirror.array<Vec3>(kPosition)[250].z, 250.0);
     ParticleStore smaller = random_store(10, 5, false);
     EXPECT_THROW(mirror.to_host(smaller, kPosition), std::logic_error);
+    // Velocities were sent for 64 particles only: asking for 264 back is refused, not garbage.
+    EXPECT_THROW(mirror.to_host(store, kVelocity), std::logic_error);
+    mirror.written_on_backend(kVelocity);  // as a kernel that set them all would
+    EXPECT_NO_THROW(mirror.to_host(store, kVelocity));
+}
+
+TEST(ParticleMirror, AFieldOnTheBackendIsNotSentAgain) {
+    ParticleStore store = random_store(50, 6, false);
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    mirror.to_backend(store, kPosition | kVelocity);
+    EXPECT_EQ(mirror.resident(), unsigned(kPosition | kVelocity));
+    // The host holds poison now: sending it would overwrite the back end's positions.
+    EXPECT_THROW(mirror.to_backend(store, kPosition), std::logic_error);
+    mirror.to_host(store, kPosition);
+    EXPECT_EQ(mirror.resident(), unsigned(kVelocity));
+    EXPECT_NO_THROW(mirror.to_backend(store, kPosition));
 }
 
 TEST(ParticleMirror, CudaMemoryRefusedClearlyWithoutDevice) {
