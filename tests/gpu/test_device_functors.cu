@@ -14,26 +14,15 @@
 #include "emergent/gpu.hpp"
 #include "execution/cuda_algorithms.cuh"
 #include "gpu/device_buffer.cuh"
+#include "support/device_arrays.cuh"
 #include "integrate/particle_sums.hpp"
 #include "thermostat/wall_layer_rescale.hpp"
 
 using namespace emergent;
+using fixtures::on_device;
+using fixtures::on_host;
 
 namespace {
-
-template <class T>
-gpu::DeviceBuffer<T> on_device(const std::vector<T>& v) {
-    gpu::DeviceBuffer<T> d(v.size());
-    EMERGENT_CUDA_CHECK(cudaMemcpy(d.data(), v.data(), v.size() * sizeof(T), cudaMemcpyHostToDevice));
-    return d;
-}
-
-template <class T>
-std::vector<T> on_host(const gpu::DeviceBuffer<T>& d) {
-    std::vector<T> v(d.size());
-    EMERGENT_CUDA_CHECK(cudaMemcpy(v.data(), d.data(), d.bytes(), cudaMemcpyDeviceToHost));
-    return v;
-}
 
 /// Particles in a slab 0 < z < 10, some moved just past the wall at z = 0 by a drift of dt.
 struct Slab {
