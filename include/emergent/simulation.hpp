@@ -30,6 +30,19 @@ enum class Integrator {
     Omelyan,
 };
 
+/// Where a run's particle data live and its per-particle loops run (run parameter `backend`).
+enum class Backend {
+    /// CPU loops on the particle store itself.
+    Host,
+    /// The host back end run as a device would be: particle data kept in memory apart from the
+    /// store, copied only where the step syncs, and the store's copy of a field poisoned (NaN,
+    /// large negative integers) while its current values are elsewhere. Bitwise the results of
+    /// Host; for tests (a missing sync shows on a CPU) and for counting transfers.
+    Checking,
+    /// A CUDA device, one per rank.
+    Cuda,
+};
+
 struct RunSettings {
     double dt = 0.005;
     double skin = 0.3;
@@ -37,6 +50,7 @@ struct RunSettings {
     int cell_subdivisions = 1;
     Integrator integrator = Integrator::VelocityVerlet;
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
+    Backend backend = Backend::Host;
 };
 
 /// Bounds of the run-time guards; 0 switches a bound off.
@@ -178,6 +192,9 @@ public:
                  bool saved_forces = false);
 
     // --- state ---
+    /// This rank's particles, brought up to date from the back end (a sync: call it at
+    /// sampling, output and checkpoints, not every step). The non-const form also counts every
+    /// field as changed by the caller, so the back end gets them all again before the next step.
     ParticleStore& particles();
     const ParticleStore& particles() const;
     const Box& box() const;
@@ -193,6 +210,8 @@ public:
     double degrees_of_freedom() const;
     const std::vector<double>& species_masses() const;
     bool has_thermostat() const;
+    /// Where the particle data live and the loops run.
+    Backend backend() const;
     /// True when total energy should be conserved: no thermostat, every force term conservative.
     bool conserves_energy() const;
     const PhaseTimes& phase_times() const;

@@ -89,6 +89,11 @@ RunSettings run_settings(const Config& cfg) {
     settings.integrator =
         cfg.text("integrator") == "omelyan" ? Integrator::Omelyan : Integrator::VelocityVerlet;
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
+    const std::string& backend = cfg.text("backend");
+    // auto stays on the host until the step runs on CUDA devices (Simulation refuses cuda).
+    settings.backend = backend == "cuda"       ? Backend::Cuda
+                       : backend == "checking" ? Backend::Checking
+                                               : Backend::Host;
     return settings;
 }
 

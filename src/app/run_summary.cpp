@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "decomposition/reductions.hpp"
+#include "emergent/execution.hpp"
 #include "observe/block_average.hpp"
 
 namespace emergent::app {
@@ -103,6 +104,17 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
         }
         field("scene_measures", scene + "}");
     }
+    // Host<->back-end copies since the start, all ranks (none on the host back end).
+    const exec::Transfers& moved = exec::transfers();
+    const char* backend = sim.backend() == Backend::Cuda       ? "cuda"
+                          : sim.backend() == Backend::Checking ? "checking"
+                                                               : "host";
+    field("backend", std::string("\"") + backend + "\"");
+    auto total = [&](std::uint64_t count) {
+        return std::to_string(decomp::sum(comm, static_cast<long long>(count)));
+    };
+    field("transfers", "{\"arrays\": " + total(moved.arrays) + ", \"array_bytes\": " +
+                           total(moved.array_bytes) + ", \"scalars\": " + total(moved.scalars) + "}");
     field("peak_rss_bytes", std::to_string(rss));
     field("bytes_per_particle", number(rss / n), false);
     json << "}\n";

@@ -53,6 +53,12 @@ Schema run_schema() {
                 "time-step splitting: verlet (velocity Verlet, one force evaluation per step) or "
                 "omelyan (Omelyan-Mryglod-Folk minimum-error scheme, two evaluations per step, "
                 "~10x smaller leading error; see benchmarks/RESULTS.md for when it pays)")
+        .choice("backend", "auto", {"auto", "host", "checking", "cuda"},
+                "where the particle data live and the per-particle loops run: host (CPU loops), "
+                "cuda (one CUDA device per rank; the step does not run there yet and is refused), "
+                "checking (the host back end with its data kept apart from the host copy, which "
+                "is poisoned between syncs: bitwise host's results, for tests), auto (host for "
+                "now; cuda once the step runs there)")
         .integer("equilibration_steps", 1000, 0, 1e12, "steps",
                  "steps run first, excluded from averages and timing")
         .integer("steps", 10000, 0, 1e12, "steps", "measured steps (averaged and timed)")
@@ -84,7 +90,7 @@ Schema run_schema() {
               "particle elements written per frame (comma-separated)");
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})
-        .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "equilibration_steps", "steps",
+        .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "equilibration_steps", "steps",
                      "sample_every", "seed", "grid", "progress_interval", "checkpoint_every",
                      "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
                      "guard.max_overlap", "guard.max_energy_drift", "output.every",

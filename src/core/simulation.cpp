@@ -14,7 +14,9 @@
 #include "decomposition/reductions.hpp"
 #include "emergent/error.hpp"
 #include "emergent/execution.hpp"
+#include "emergent/gpu.hpp"
 #include "emergent/random.hpp"
+#include "execution/particle_mirror.hpp"
 #include "integrate/kick_drift.hpp"
 #include "integrate/particle_sums.hpp"
 #include "neighbour/cell_list.hpp"
@@ -63,6 +65,40 @@ struct Simulation::Engine {
     PhaseTimes times;
     std::vector<std::uint32_t> order;
     rigid::RigidBodies rigid;
+    /// The particle arrays in the back end's memory; null on the host back end, whose loops
+    /// work on the store itself.
+    std::unique_ptr<exec::ParticleMirror> mirror;
+
+    // Each part of the step says what it reads and writes where it runs: on the back end
+    // (functors through the execution layer, on the mirror's arrays) or as host code on the
+    // store (what is not converted yet, and what needs the host: decomposition, output). The
+    // mirror copies a field only where its copy there is stale; on the host back end all of
+    // this is nothing.
+    void backend_reads(unsigned fields) const {
+        if (mirror) mirror->to_backend(host_store(), fields);
+    }
+    void backend_wrote(unsigned fields) const {
+        if (mirror) mirror->written_on_backend(host_store(), fields);
+    }
+    void host_reads(unsigned fields) const {
+        if (mirror) mirror->to_host(host_store(), fields);
+    }
+    void host_wrote(unsigned fields) const {
+        if (mirror) mirror->written_on_host(fields);
+    }
+    /// Bringing the host's copy up to date is no change of the simulation's state, so const
+    /// members may sync.
+    ParticleStore& host_store() const { return const_cast<ParticleStore&>(store); }
+    /// Per-species masses where the back end's loops read them.
+    const double* masses() const { return mirror ? mirror->table(0, mass) : mass.data(); }
+    const double* inverse_masses() const {
+        return mirror ? mirror->table(1, inverse_mass) : inverse_mass.data();
+    }
+    /// The array of `field` the back end's loops work on.
+    template <class T>
+    T* data(FieldMask field, const std::vector<T>& host) const {
+        return mirror ? mirror->array<T>(field) : const_cast<T*>(host.data());
+    }
 
     bool bodies() const { return !rigid.empty_everywhere(); }
     /// Constituents of a body owned here may stick out of the domain by the body's extent.
@@ -71,6 +107,8 @@ struct Simulation::Engine {
     /// Sets up the list and cells for the force terms present, and counts particles.
     void prepare() {
         require_grid("initialise");
+        host_reads(kAllFields);  // the store's arrays are refitted below
+        host_wrote(kAllFields);
         double cutoff = 0;
         for (const auto& term : forces) cutoff = std::max(cutoff, term->cutoff());
         list = NeighbourList(cutoff, settings.skin);
@@ -101,6 +139,10 @@ struct Simulation::Engine {
 
     void rebuild() {
         PhaseTimer timer(times.neighbour);
+        // Host code (decomposition, cells, list) that reorders and resizes every array; forces
+        // are recomputed after it.
+        host_reads(kAllFields & ~kForce);
+        host_wrote(kAllFields);
         if (!boundaries.empty()) agree_on_boundary_faults();
         if (bodies()) rigid.drop_constituents(store);
         migration.apply(store, *grid);
@@ -134,33 +176,52 @@ struct Simulation::Engine {
     /// time are placed there).
     void compute_forces(bool sample, double at) {
         PhaseTimer timer(times.force);
+        // Force terms are host code on the store so far.
+        host_reads(particle_fields | ghost_fields | (bodies() ? kPosition | kBody : 0u));
         std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
         sums = ForceSums{};
         const ForceContext context{&mass, box, at};
         for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
         if (bodies()) rigid.sum_forces(store);
+        host_wrote(kForce);
     }
 
     /// v += kick f/m, x += drift v; then the walls act on the drift.
     void kick_drift(double kick, double drift, double at) {
         PhaseTimer timer(times.integrate);
         moved_since_build = true;
+        backend_reads(kPosition | kVelocity | kForce | kSpecies);
         exec::for_each(exec::Host{}, store.n_owned(),
-                       integrate::KickDrift{store.position.data(), store.velocity.data(),
-                                            store.force.data(), store.species.data(),
-                                            inverse_mass.data(), kick, drift});
+                       integrate::KickDrift{data(kPosition, store.position),
+                                            data(kVelocity, store.velocity), data(kForce, store.force),
+                                            data(kSpecies, store.species), inverse_masses(),
+                                            kick, drift});
+        backend_wrote(kPosition | kVelocity);
         // Spheres of bodies were moved as free particles above; the bodies now place them.
-        if (bodies()) rigid.kick_drift(store, kick, drift);
+        if (bodies()) {
+            host_reads(kPosition | kVelocity | kBody);
+            rigid.kick_drift(store, kick, drift);
+            host_wrote(kPosition | kVelocity);
+        }
+        if (boundaries.empty()) return;
+        host_reads(kPosition | kVelocity | kSpecies | kId);
         const BoundaryContext context{&mass, drift, step, &box, at};
         for (auto& rule : boundaries) rule->apply(store, context, boundary_fault);
+        host_wrote(kPosition | kVelocity);
     }
 
     void kick(double kick) {
         PhaseTimer timer(times.integrate);
+        backend_reads(kVelocity | kForce | kSpecies);
         exec::for_each(exec::Host{}, store.n_owned(),
-                       integrate::Kick{store.velocity.data(), store.force.data(),
-                                       store.species.data(), inverse_mass.data(), kick});
-        if (bodies()) rigid.kick(store, kick);
+                       integrate::Kick{data(kVelocity, store.velocity), data(kForce, store.force),
+                                       data(kSpecies, store.species), inverse_masses(), kick});
+        backend_wrote(kVelocity);
+        if (bodies()) {
+            host_reads(kPosition | kVelocity);
+            rigid.kick(store, kick);
+            host_wrote(kVelocity);
+        }
     }
 
     /// After a drift: the list is rebuilt if some particle moved beyond half the skin since
@@ -169,11 +230,18 @@ struct Simulation::Engine {
         bool needed;
         {
             PhaseTimer timer(times.communicate);
+            // The rebuild criterion and the halo are host code so far.
+            host_reads(kPosition);
             needed = list.needs_rebuild(store, comm);
             if (!needed) {
                 halo.gather_positions(store);
+                host_wrote(kPosition);
                 // Contact forces with damping or friction need their partners' velocities.
-                if (ghost_fields & kVelocity) halo.gather_velocities(store);
+                if (ghost_fields & kVelocity) {
+                    host_reads(kVelocity);
+                    halo.gather_velocities(store);
+                    host_wrote(kVelocity);
+                }
             }
         }
         if (needed) rebuild();
@@ -183,9 +251,10 @@ struct Simulation::Engine {
 
     /// Kinetic energy of free particles and bodies (spheres of bodies count through them).
     double local_kinetic() const {
+        backend_reads(kVelocity | kSpecies | kBody);
         const integrate::FreeKineticEnergy energy{
-            store.velocity.data(), store.species.data(), mass.data(),
-            store.has_rigid_fields() ? store.body.data() : nullptr};
+            data(kVelocity, store.velocity), data(kSpecies, store.species), masses(),
+            store.has_rigid_fields() ? data(kBody, store.body) : nullptr};
         return exec::transform_sum<double>(exec::Host{}, store.n_owned(), energy) + rigid.kinetic();
     }
 
@@ -200,6 +269,7 @@ struct Simulation::Engine {
 
     void count_bodies() {
         long long free_here = 0;
+        host_reads(kBody);
         for (std::size_t i = 0; i < store.n_owned(); ++i) free_here += is_free(i);
         n_free = decomp::sum(comm, free_here);
         n_bodies = decomp::sum(comm, static_cast<long long>(rigid.n_owned()));
@@ -211,13 +281,16 @@ struct Simulation::Engine {
         const double kinetic = decomp::sum(comm, local_kinetic());
         const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
         exec::for_each(exec::Host{}, store.n_owned(),
-                       integrate::ScaleVelocity{store.velocity.data(), factor});
+                       integrate::ScaleVelocity{data(kVelocity, store.velocity), factor});
+        backend_wrote(kVelocity);
     }
 
     void apply_wall_layers() {
         if (wall_layers.empty()) return;
         PhaseTimer timer(times.integrate);
+        host_reads(kPosition | kVelocity | kSpecies);
         for (auto& layer : wall_layers) layer->apply(store, mass, comm, step);
+        host_wrote(kVelocity);
     }
 
     void require_grid(const char* what) const {
@@ -229,6 +302,22 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
     : engine_(std::make_unique<Engine>()) {
     engine_->comm = comm;
     engine_->settings = settings;
+    switch (settings.backend) {
+    case Backend::Host:
+        break;
+    case Backend::Checking:
+        engine_->mirror = std::make_unique<exec::ParticleMirror>(exec::separate_host_memory(), true);
+        break;
+    case Backend::Cuda:
+        // The execution layer, the mirror and the device memory are in place; the step's
+        // kernels are not launched on a device yet (the one-engine work), so a device run is
+        // refused rather than run on the host behind the user's back.
+        if (!gpu::device_present())
+            throw InputError("backend=cuda: no CUDA device is visible to this process "
+                             "(or the build has no CUDA); use backend=host");
+        throw InputError("backend=cuda: the time step does not run on a CUDA device yet; use "
+                         "backend=host");
+    }
 }
 
 Simulation::~Simulation() = default;
@@ -312,12 +401,16 @@ void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::in
     if (species < 0 || species >= static_cast<int>(e.mass.size()))
         throw InputError("particle species " + std::to_string(species) + " has no mass set");
     if (!(diameter > 0)) throw InputError("particle diameter " + std::to_string(diameter) + " must be > 0");
+    e.host_reads(kAllFields);
     e.store.add_owned(x, v, species, id, diameter);
+    e.host_wrote(kAllFields);
 }
 
 void Simulation::assign_thermal_velocities(double temperature, std::uint64_t seed) {
     Engine& e = *engine_;
     ParticleStore& s = e.store;
+    e.host_reads(kVelocity | kSpecies | kId);
+    e.host_wrote(kVelocity);
     e.n_global = decomp::sum(e.comm, static_cast<long long>(s.n_owned()));
     // Exact (order-independent) sums: the initial state is bitwise the same on any rank count.
     decomp::ExactSum p[3], total_mass, kinetic;
@@ -357,12 +450,16 @@ void Simulation::initialise() {
 }
 
 void Simulation::check_guards(const GuardLimits& limits) const {
-    const ParticleStore& s = engine_->store;
-    std::string problem = engine_->boundary_fault;
+    const Engine& e = *engine_;
+    const ParticleStore& s = e.store;
+    std::string problem = e.boundary_fault;
     const double f2max = limits.max_force * limits.max_force;
-    const integrate::UnfitState unfit{s.position.data(), s.velocity.data(), s.force.data(), f2max};
+    e.backend_reads(kPosition | kVelocity | kForce);
+    const integrate::UnfitState unfit{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
+                                      e.data(kForce, s.force), f2max};
     const std::size_t i = problem.empty() ? exec::first_index(exec::Host{}, s.n_owned(), unfit) : s.n_owned();
     if (i < s.n_owned()) {
+        e.host_reads(kPosition | kVelocity | kForce | kId);  // to name the offender
         const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
         const bool finite = std::isfinite(x.x + x.y + x.z + v.x + v.y + v.z + f.x + f.y + f.z);
         std::ostringstream msg;
@@ -392,6 +489,7 @@ void Simulation::snapshot(StateSnapshot& snap) const {
     // diameters the same for every particle here are left to their fill values (0 and 1).
     const ParticleStore& s = e.store;
     const auto n = static_cast<std::ptrdiff_t>(s.n_owned());
+    e.host_reads(kPosition | kVelocity | kId | kImage | kBody | kForce | kSpecies | kDiameter);
     unsigned fields = kPosition | kVelocity | kId | kImage | kBody;
     if (e.ghost_fields & kVelocity) fields |= kForce;
     if (std::any_of(s.species.begin(), s.species.begin() + n, [](int k) { return k != 0; })) fields |= kSpecies;
@@ -447,6 +545,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     owned.position.assign(reference.begin(), reference.end());
     owned.position.resize(current.size());
     e.store = std::move(owned);
+    e.host_wrote(kAllFields);  // what lived on the back end belongs to the state left behind
     ParticleStore& s = e.store;
     e.prepare();
     e.rebuild();
@@ -459,6 +558,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
         if (e.is_free(i)) s.position[i] = current[saved(s.id[i])];
     e.halo.gather_positions(s);
     if (e.ghost_fields & kVelocity) e.halo.gather_velocities(s);
+    e.host_wrote(kPosition | kVelocity);
     e.step = step;
     e.time = time;
     e.rebuilds = rebuilds;
@@ -470,6 +570,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     if (saved_forces) {
         for (std::size_t i = 0; i < s.n_owned(); ++i) s.force[i] = forces[saved(s.id[i])];
         if (e.bodies()) e.rigid.sum_forces(s);
+        e.host_wrote(kForce);
     }
 }
 
@@ -507,10 +608,12 @@ ThermoSample Simulation::measure() const {
     const Engine& e = *engine_;
     const ParticleStore& s = e.store;
     const Vec3 len = e.box.length();
+    e.backend_reads(kPosition | kVelocity | kImage | kSpecies | kBody);
     const integrate::Momenta free = exec::transform_sum<integrate::Momenta>(
         exec::Host{}, s.n_owned(),
-        integrate::FreeMomenta{s.position.data(), s.velocity.data(), s.image.data(), s.species.data(),
-                               e.mass.data(), s.has_rigid_fields() ? s.body.data() : nullptr, len});
+        integrate::FreeMomenta{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
+                               e.data(kImage, s.image), e.data(kSpecies, s.species), e.masses(),
+                               s.has_rigid_fields() ? e.data(kBody, s.body) : nullptr, len});
     const Vec3 pb = e.rigid.momentum(), lb = e.rigid.angular_momentum(len);
     double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
     for (int d = 0; d < 3; ++d) v[3 + d] = free.linear[d] + pb[d], v[6 + d] = free.angular[d] + lb[d];
@@ -531,8 +634,15 @@ ThermoSample Simulation::measure() const {
     return t;
 }
 
-ParticleStore& Simulation::particles() { return engine_->store; }
-const ParticleStore& Simulation::particles() const { return engine_->store; }
+ParticleStore& Simulation::particles() {
+    engine_->host_reads(kAllFields);
+    engine_->host_wrote(kAllFields);
+    return engine_->store;
+}
+const ParticleStore& Simulation::particles() const {
+    engine_->host_reads(kAllFields);
+    return engine_->store;
+}
 const Box& Simulation::box() const { return engine_->box; }
 MPI_Comm Simulation::comm() const { return engine_->comm; }
 int Simulation::rank() const { return engine_->grid ? engine_->grid->rank() : 0; }
@@ -545,6 +655,7 @@ double Simulation::dt() const { return engine_->settings.dt; }
 long long Simulation::rebuilds() const { return engine_->rebuilds; }
 double Simulation::degrees_of_freedom() const { return engine_->dof(); }
 const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }
+Backend Simulation::backend() const { return engine_->settings.backend; }
 bool Simulation::has_thermostat() const { return engine_->thermostat != nullptr; }
 bool Simulation::has_bodies() const { return engine_->bodies(); }
 ParticleStore& Simulation::bodies() { return engine_->rigid.store(); }

@@ -42,6 +42,25 @@ ParticleMirror::ParticleMirror(std::unique_ptr<ArrayMemory> memory, bool poison_
 
 ParticleMirror::~ParticleMirror() {
     for (auto& a : arrays_) memory_->release(a.data);
+    for (auto& t : tables_) memory_->release(t.data);
+}
+
+const double* ParticleMirror::table(std::size_t slot, const std::vector<double>& values) {
+    if (slot >= tables_.size()) tables_.resize(slot + 1);
+    Table& t = tables_[slot];
+    if (t.data && t.copied == values) return static_cast<const double*>(t.data);
+    if (values.size() > t.capacity) {
+        void* grown = memory_->allocate(values.size() * sizeof(double));
+        memory_->release(t.data);
+        t.data = grown;
+        t.capacity = values.size();
+    }
+    if (!t.data) t.data = memory_->allocate(sizeof(double));
+    const std::size_t bytes = values.size() * sizeof(double);
+    memory_->to_backend(t.data, values.data(), bytes);
+    count_array(bytes);
+    t.copied = values;
+    return static_cast<const double*>(t.data);
 }
 
 void* ParticleMirror::find(FieldMask field) const {
@@ -50,81 +69,83 @@ void* ParticleMirror::find(FieldMask field) const {
     return nullptr;
 }
 
-ParticleMirror::Array& ParticleMirror::slot(FieldMask field, std::size_t element_bytes) {
-    for (auto& a : arrays_)
-        if (a.field == field) return a;
-    arrays_.push_back(Array{field, element_bytes, 0, nullptr, 0});
-    return arrays_.back();
-}
-
 namespace {
-/// Poison for a field's host copy while the back end holds it: NaN bytes for floating-point
-/// fields; for integer ones 0x80 bytes, a large negative number that is no index, id, body or
-/// image count (-1 would be: it means "free particle" in the body field).
+/// Poison for a field's host copy while its current values are on the back end: NaN bytes for
+/// floating-point fields; for integer ones 0x80 bytes, a large negative number that is no index,
+/// id, body or image count (-1 would be: it means "free particle" in the body field).
 int poison_byte(FieldMask field) {
     return field == kSpecies || field == kId || field == kImage || field == kBody ? 0x80 : 0xff;
 }
 }  // namespace
 
-void ParticleMirror::to_backend(ParticleStore& store, unsigned fields) {
+void ParticleMirror::fit(ParticleStore& store) {
     const std::size_t n = store.size();
-    if (fields & resident_)
-        throw std::logic_error("particle mirror: a field sent to the back end already lives there "
-                               "(its host copy is stale): bring it back first");
+    if (n != size_) {
+        // Only host code resizes the store, and it must have had every field back first.
+        if (host_stale_)
+            throw std::logic_error("particle mirror: the store was resized to " + std::to_string(n) +
+                                   " particles while some fields lived on the back end only");
+        backend_stale_ = kAllFields;
+        size_ = n;
+    }
     store.for_each_field([&](const FieldSpan& span) {
-        Array& a = slot(span.field, span.element_bytes);
-        // Every array follows the store's size, also those not copied now: their contents
-        // stay the back end's (grown by 1/32 as the store grows, so ghosts do not reallocate).
-        if (n > a.capacity) {
-            const std::size_t capacity = n + n / 32;
-            void* grown = memory_->allocate(capacity * span.element_bytes);
-            try {
-                if (a.data && a.valid > 0 && !(fields & span.field))
-                    memory_->within(grown, a.data, a.valid * span.element_bytes);
-            } catch (...) {
-                memory_->release(grown);
-                throw;
-            }
-            memory_->release(a.data);
-            a.data = grown;
-            a.capacity = capacity;
+        Array* a = nullptr;
+        for (auto& candidate : arrays_)
+            if (candidate.field == span.field) a = &candidate;
+        if (!a) {
+            arrays_.push_back(Array{span.field, span.element_bytes, 0, nullptr});
+            a = &arrays_.back();
+            backend_stale_ |= span.field;
         }
-        if (!(fields & span.field)) return;
-        const std::size_t bytes = n * span.element_bytes;
-        memory_->to_backend(a.data, span.data, bytes);
-        count_array(bytes);
-        a.valid = n;
-        if (poison_) std::memset(span.data, poison_byte(span.field), bytes);
+        if (n <= a->capacity) return;
+        // Grown by 1/32 beyond the need, so that ghosts varying from build to build do not
+        // reallocate every time. Contents need not move: only a stale copy can be this small.
+        const std::size_t capacity = n + n / 32;
+        void* grown = memory_->allocate(capacity * span.element_bytes);
+        memory_->release(a->data);
+        a->data = grown;
+        a->capacity = capacity;
     });
-    size_ = n;
-    resident_ |= fields;
 }
 
-void ParticleMirror::written_on_backend(unsigned fields) {
-    for (auto& a : arrays_)
-        if (fields & a.field) a.valid = size_;
-    resident_ |= fields;
+void ParticleMirror::to_backend(ParticleStore& store, unsigned fields) {
+    fit(store);
+    store.for_each_field([&](const FieldSpan& span) {
+        if (!(fields & backend_stale_ & span.field)) return;
+        const std::size_t bytes = size_ * span.element_bytes;
+        memory_->to_backend(find(span.field), span.data, bytes);
+        count_array(bytes);
+        backend_stale_ &= ~static_cast<unsigned>(span.field);
+    });
 }
 
 void ParticleMirror::to_host(ParticleStore& store, unsigned fields) {
+    if (!(fields & host_stale_)) return;
     if (store.size() != size_)
         throw std::logic_error("particle mirror: the store holds " + std::to_string(store.size()) +
                                " particles, the back end " + std::to_string(size_));
     store.for_each_field([&](const FieldSpan& span) {
-        if (!(fields & span.field)) return;
-        const Array* a = nullptr;
-        for (const auto& candidate : arrays_)
-            if (candidate.field == span.field) a = &candidate;
-        // Only what was sent or written there comes back: a grown array holds nothing new.
-        if (!a || a->valid < size_)
-            throw std::logic_error("particle mirror: a field was asked back for " +
-                                   std::to_string(size_) + " particles, but the back end holds " +
-                                   std::to_string(a ? a->valid : 0) + " of them");
+        if (!(fields & host_stale_ & span.field)) return;
         const std::size_t bytes = size_ * span.element_bytes;
-        memory_->to_host(span.data, a->data, bytes);
+        memory_->to_host(span.data, find(span.field), bytes);
         count_array(bytes);
+        host_stale_ &= ~static_cast<unsigned>(span.field);
     });
-    resident_ &= ~fields;
+}
+
+void ParticleMirror::written_on_backend(ParticleStore& store, unsigned fields) {
+    fit(store);
+    store.for_each_field([&](const FieldSpan& span) {
+        if (!(fields & span.field)) return;
+        backend_stale_ &= ~static_cast<unsigned>(span.field);
+        host_stale_ |= span.field;
+        if (poison_) std::memset(span.data, poison_byte(span.field), size_ * span.element_bytes);
+    });
+}
+
+void ParticleMirror::written_on_host(unsigned fields) {
+    backend_stale_ |= fields;
+    host_stale_ &= ~fields;
 }
 
 }  // namespace emergent::exec

@@ -1,13 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The particle arrays of one rank in a back end's own memory (a GPU's, or for checking, host
-// memory apart from the store), with the store as their host mirror. Copies go only where the
-// engine syncs (sampling, output, checkpoints, decomposition), each counted in
-// exec::transfers(). The checking variant fills the host's copy of a field with a poison
-// pattern once the field lives on the back end, so host code that reads it between syncs
-// reads NaN (floating point) or a large negative number (integers) and fails on a CPU, not
-// only on a GPU. A field lives on the back end from when it is sent (or written there) until it
-// comes back; sending it again meanwhile is refused, since that would overwrite it with the
-// stale host copy.
+// memory apart from the store), with the store as their host mirror. Each field's current
+// values are on the host, on the back end, or on both; a copy goes only where a part of the step
+// needs a field whose copy there is stale, and each is counted in exec::transfers(). The
+// checking variant fills the host's copy of a field with a poison pattern when a kernel writes
+// it on the back end, so host code that reads it before it comes back reads NaN (floating
+// point) or a large negative number (integers) and fails on a CPU, not only on a GPU.
 #pragma once
 
 #include <cstddef>
@@ -27,20 +25,32 @@ public:
     ParticleMirror(const ParticleMirror&) = delete;
     ParticleMirror& operator=(const ParticleMirror&) = delete;
 
-    /// Copies `fields` of all store.size() particles to the back end (its arrays follow the
-    /// store's size and fields); with poisoning, the host's copy of them is poisoned after.
+    /// Makes the back end hold the current values of `fields` for all store.size() particles,
+    /// copying those whose back-end copy is stale. A store of another size than the back end's
+    /// was resized by host code: every back-end copy is stale then, and a field whose current
+    /// values were on the back end only is an error (it would be lost).
     void to_backend(ParticleStore& store, unsigned fields);
-    /// Copies `fields` back into the store (whose size must be the mirror's); each must hold
-    /// all size() particles on the back end (sent, or written there).
+    /// Makes the store hold the current values of `fields`, copying those whose host copy is
+    /// stale (the store's size must be the back end's).
     void to_host(ParticleStore& store, unsigned fields);
-    /// A kernel filled `fields` for all size() particles on the back end: their host copies are
-    /// stale from now on.
-    void written_on_backend(unsigned fields);
-    /// The fields whose current values are on the back end only (sent or written there since
-    /// they last came back): sending one again would overwrite them with a stale host copy.
-    unsigned resident() const { return resident_; }
+    /// A kernel wrote `fields` for all store.size() particles on the back end (arrays are sized
+    /// to the store first): their host copies are stale, and poisoned in the checking variant.
+    void written_on_backend(ParticleStore& store, unsigned fields);
+    /// Host code wrote `fields` in the store (all the particles that matter): their back-end
+    /// copies are stale.
+    void written_on_host(unsigned fields);
 
-    /// The back end's array of `field` (null if the store has no such field), as T*.
+    /// Fields whose current values are on the back end only.
+    unsigned backend_only() const { return host_stale_; }
+    /// Fields whose back-end copy is stale (or was never made).
+    unsigned host_only() const { return backend_stale_; }
+
+    /// A small table the kernels read (per-species masses) on the back end: `values` are
+    /// copied to table `slot` when they differ from what was copied there last (counted as an
+    /// array), so a kernel never reads host memory.
+    const double* table(std::size_t slot, const std::vector<double>& values);
+
+    /// The back end's array of `field` (null if it has none yet), as T*.
     template <class T>
     T* array(FieldMask field) const {
         return static_cast<T*>(find(field));
@@ -53,16 +63,23 @@ private:
         FieldMask field;
         std::size_t element_bytes = 0, capacity = 0;
         void* data = nullptr;
-        std::size_t valid = 0;  ///< leading elements holding the particles' values
     };
     void* find(FieldMask field) const;
-    Array& slot(FieldMask field, std::size_t element_bytes);
+    /// Gives every field of the store an array of at least store.size() elements.
+    void fit(ParticleStore& store);
+
+    struct Table {
+        std::vector<double> copied;  ///< what the back end holds
+        void* data = nullptr;
+        std::size_t capacity = 0;
+    };
 
     std::unique_ptr<ArrayMemory> memory_;
     bool poison_;
     std::vector<Array> arrays_;
+    std::vector<Table> tables_;
     std::size_t size_ = 0;
-    unsigned resident_ = 0;
+    unsigned host_stale_ = 0, backend_stale_ = kAllFields;
 };
 
 }  // namespace emergent::exec

@@ -3,6 +3,7 @@
 #include "io/checkpoint.hpp"
 
 #include <cstdio>
+#include <utility>
 
 #include "decomposition/distributor.hpp"
 #include "emergent/build_info.hpp"
@@ -93,7 +94,7 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
             }
         }
 
-        ParticleStore& s = sim.particles();
+        const ParticleStore& s = std::as_const(sim).particles();
         const IdOrder order(comm, s.id.data(), s.n_owned(), sim.n_global());
         auto put = [&](const char* name, hid_t type, int width, const void* field,
                        std::size_t bytes) {

@@ -77,7 +77,7 @@ void H5mdWriter::add_group(const std::string& name, const std::string& key, long
     }
 }
 
-void H5mdWriter::write_group(const std::string& key, ParticleStore& store, long long n_global,
+void H5mdWriter::write_group(const std::string& key, const ParticleStore& store, long long n_global,
                              const std::vector<std::string>& elements, long long step, double time) {
     const IdOrder order(comm_, store.id.data(), store.n_owned(), n_global);
     auto write = [&](const std::string& name, const void* field, std::size_t bytes) {
@@ -101,12 +101,12 @@ void H5mdWriter::write_group(const std::string& key, ParticleStore& store, long 
 
 H5mdWriter::~H5mdWriter() = default;
 
-void H5mdWriter::write_particles(ParticleStore& store, long long step, double time) {
+void H5mdWriter::write_particles(const ParticleStore& store, long long step, double time) {
     write_group("p/", store, meta_.n_global, meta_.elements, step, time);
     H5Fflush(file_, H5F_SCOPE_GLOBAL);
 }
 
-void H5mdWriter::write_bodies(ParticleStore& bodies, long long step, double time) {
+void H5mdWriter::write_bodies(const ParticleStore& bodies, long long step, double time) {
     write_group("b/", bodies, meta_.n_bodies,
                 {"position", "velocity", "orientation", "image", "species", "id"}, step, time);
 }

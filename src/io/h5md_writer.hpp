@@ -35,10 +35,10 @@ public:
     ~H5mdWriter();
 
     /// Appends one frame of every configured element. Collective.
-    void write_particles(ParticleStore& store, long long step, double time);
+    void write_particles(const ParticleStore& store, long long step, double time);
 
     /// Appends one frame of the rigid bodies (centre of mass, velocity, orientation, ...).
-    void write_bodies(ParticleStore& bodies, long long step, double time);
+    void write_bodies(const ParticleStore& bodies, long long step, double time);
 
     /// Appends one value (scalar if size 1, else a vector) to /observables/<name>. Collective:
     /// every rank calls it with the same arguments; rank 0 writes.
@@ -56,7 +56,7 @@ public:
 private:
     void add_group(const std::string& name, const std::string& key, long long n_global,
                    const std::vector<std::string>& elements);
-    void write_group(const std::string& key, ParticleStore& store, long long n_global,
+    void write_group(const std::string& key, const ParticleStore& store, long long n_global,
                      const std::vector<std::string>& elements, long long step, double time);
 
     MPI_Comm comm_;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <utility>
 
 #include "emergent/error.hpp"
 
@@ -89,7 +90,7 @@ void RunOutput::on_step(Simulation& sim) {
     const bool fresh_step = step > last_field_step_;
     last_field_step_ = std::max(last_field_step_, step);
     if (!fields_.empty() && fresh_step && first_step_seen_ && step % field_sample_every_ == 0)
-        add_sample(fields_, sim.particles(), sim.species_masses(), sim.box());
+        add_sample(fields_, std::as_const(sim).particles(), sim.species_masses(), sim.box());
     first_step_seen_ = true;
     if (!fields_.empty() && step % field_interval_ == 0 && fields_.front().samples() > 0) {
         for (std::size_t g = 0; g < fields_.size(); ++g) {
@@ -103,7 +104,7 @@ void RunOutput::on_step(Simulation& sim) {
     }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
-    trajectory_->write_particles(sim.particles(), step, sim.time());
+    trajectory_->write_particles(std::as_const(sim).particles(), step, sim.time());
     if (sim.has_bodies()) trajectory_->write_bodies(sim.bodies(), step, sim.time());
     last_frame_ = step;
 }
@@ -118,7 +119,7 @@ void RunOutput::restore_fields(const CheckpointHeader& checkpoint, int rank) {
 void RunOutput::finish(Simulation& sim) {
     if (!trajectory_) return;
     if (sim.step_index() != last_frame_) {
-        trajectory_->write_particles(sim.particles(), sim.step_index(), sim.time());
+        trajectory_->write_particles(std::as_const(sim).particles(), sim.step_index(), sim.time());
         if (sim.has_bodies()) trajectory_->write_bodies(sim.bodies(), sim.step_index(), sim.time());
     }
     trajectory_->finish();

@@ -57,6 +57,8 @@ TEST(ParticleMirror, RoundTripIsExactAndCounted) {
         });
         EXPECT_EQ(exec::transfers().arrays - before.arrays, static_cast<unsigned>(fields));
         EXPECT_EQ(exec::transfers().array_bytes - before.array_bytes, bytes);
+        EXPECT_TRUE(same_bits(store, original)) << "a copy to the back end leaves the host's valid";
+        mirror.written_on_backend(store, kAllFields);
         EXPECT_FALSE(same_bits(store, original)) << "the host copy should be poisoned";
         mirror.to_host(store, kAllFields);
         EXPECT_TRUE(same_bits(store, original)) << (rigid ? "rigid" : "plain");
@@ -67,15 +69,17 @@ TEST(ParticleMirror, RoundTripIsExactAndCounted) {
 TEST(ParticleMirror, PoisonShowsAReadBetweenSyncs) {
     ParticleStore store = random_store(100, 2, false);
     exec::ParticleMirror mirror(exec::separate_host_memory(), true);
-    mirror.to_backend(store, kPosition | kSpecies);
+    mirror.to_backend(store, kPosition | kSpecies | kVelocity);
+    mirror.written_on_backend(store, kPosition | kSpecies);
     // What a host loop that forgot to sync would read: NaN positions, a species (like an id,
     // body or image count) far below any valid value, -1 included (it means a free particle).
     EXPECT_TRUE(std::isnan(store.position[17].x));
     EXPECT_LT(store.species[17], -1000000);
-    EXPECT_FALSE(std::isnan(store.velocity[17].x)) << "fields not moved are left alone";
+    EXPECT_FALSE(std::isnan(store.velocity[17].x)) << "fields only read there are left alone";
+    EXPECT_EQ(mirror.backend_only(), unsigned(kPosition | kSpecies));
     exec::ParticleMirror plain(exec::separate_host_memory(), false);
     ParticleStore kept = random_store(100, 2, false);
-    plain.to_backend(kept, kPosition);
+    plain.written_on_backend(kept, kPosition);
     EXPECT_FALSE(std::isnan(kept.position[17].x)) << "poisoning only in the checking variant";
 }
 
@@ -94,43 +98,52 @@ TEST(ParticleMirror, FunctorsRunOnTheBackendArrays) {
                                           mirror.array<Vec3>(kForce), mirror.array<int>(kSpecies),
                                           inverse_mass.data(), 0.0025, 0.005};
     exec::for_each(exec::Host{}, mirror.size(), on_backend);
+    mirror.written_on_backend(store, kPosition | kVelocity);
     mirror.to_host(store, kPosition | kVelocity);
     EXPECT_TRUE(same_bits(store.position, reference.position));
     EXPECT_TRUE(same_bits(store.velocity, reference.velocity));
+}
+
+TEST(ParticleMirror, CopiesOnlyStaleFields) {
+    ParticleStore store = random_store(50, 6, false);
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    const exec::Transfers before = exec::transfers();
+    mirror.to_backend(store, kPosition | kVelocity);
+    mirror.to_backend(store, kPosition | kVelocity);  // both current there already
+    mirror.to_host(store, kPosition | kVelocity);     // and here
+    EXPECT_EQ(exec::transfers().arrays - before.arrays, 2u);
+    store.position[3].x += 1;  // host code moves a particle
+    mirror.written_on_host(kPosition);
+    EXPECT_EQ(mirror.host_only(), mirror.host_only() | kPosition);
+    mirror.to_backend(store, kPosition | kVelocity);
+    EXPECT_EQ(exec::transfers().arrays - before.arrays, 3u);
+    EXPECT_EQ(mirror.array<Vec3>(kPosition)[3].x, store.position[3].x);
 }
 
 TEST(ParticleMirror, ArraysFollowTheStoreSize) {
     ParticleStore store = random_store(64, 4, false);
     exec::ParticleMirror mirror(exec::separate_host_memory(), false);
     mirror.to_backend(store, kAllFields);
-    const double v5 = store.velocity[5].y;
-    // Positions back for the decomposition, ghosts appended (far more than the 1/32 room):
-    // velocities stay on the back end as they were, positions of the new size go over.
-    mirror.to_host(store, kPosition);
+    mirror.written_on_backend(store, kVelocity);  // a kernel moved the particles on
+    // Host code that resizes the store (ghosts for the decomposition) while velocities live
+    // on the back end only would lose them: refused.
+    store.resize_ghosts(200);
+    EXPECT_THROW(mirror.to_backend(store, kPosition), std::logic_error);
+    EXPECT_THROW(mirror.to_host(store, kVelocity), std::logic_error) << "sizes differ";
+    store.resize_ghosts(0);
+    mirror.array<Vec3>(kVelocity)[5].y = 7.5;
+    mirror.to_host(store, kVelocity);
+    EXPECT_EQ(store.velocity[5].y, 7.5);
+    // Now the resize is fine (far more than the 1/32 room): everything is sent at the new size.
     store.resize_ghosts(200);
     for (std::size_t i = store.n_owned(); i < store.size(); ++i) store.position[i] = {1, 2, double(i)};
-    mirror.to_backend(store, kPosition);
-    EXPECT_EQ(mirror.size(), store.size());
-    EXPECT_EQ(mirror.array<Vec3>(kVelocity)[5].y, v5);
-    EXPECT_EQ(mirror.array<Vec3>(kPosition)[250].z, 250.0);
-    ParticleStore smaller = random_store(10, 5, false);
-    EXPECT_THROW(mirror.to_host(smaller, kPosition), std::logic_error);
-    // Velocities were sent for 64 particles only: asking for 264 back is refused, not garbage.
-    EXPECT_THROW(mirror.to_host(store, kVelocity), std::logic_error);
-    mirror.written_on_backend(kVelocity);  // as a kernel that set them all would
-    EXPECT_NO_THROW(mirror.to_host(store, kVelocity));
-}
-
-TEST(ParticleMirror, AFieldOnTheBackendIsNotSentAgain) {
-    ParticleStore store = random_store(50, 6, false);
-    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    mirror.written_on_host(kPosition);
     mirror.to_backend(store, kPosition | kVelocity);
-    EXPECT_EQ(mirror.resident(), unsigned(kPosition | kVelocity));
-    // The host holds poison now: sending it would overwrite the back end's positions.
-    EXPECT_THROW(mirror.to_backend(store, kPosition), std::logic_error);
-    mirror.to_host(store, kPosition);
-    EXPECT_EQ(mirror.resident(), unsigned(kVelocity));
-    EXPECT_NO_THROW(mirror.to_backend(store, kPosition));
+    EXPECT_EQ(mirror.size(), store.size());
+    EXPECT_EQ(mirror.array<Vec3>(kVelocity)[5].y, 7.5);
+    EXPECT_EQ(mirror.array<Vec3>(kPosition)[250].z, 250.0);
+    EXPECT_EQ(mirror.host_only() & (kPosition | kVelocity), 0u);
+    EXPECT_NE(mirror.host_only() & kForce, 0u) << "not sent at the new size";
 }
 
 TEST(ParticleMirror, CudaMemoryRefusedClearlyWithoutDevice) {
@@ -141,4 +154,18 @@ TEST(ParticleMirror, CudaMemoryRefusedClearlyWithoutDevice) {
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("GPU was requested"), std::string::npos) << e.what();
     }
+}
+
+TEST(ParticleMirror, TablesAreCopiedWhenTheyChange) {
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    std::vector<double> mass{1.0, 2.0};
+    const exec::Transfers before = exec::transfers();
+    const double* on_backend = mirror.table(0, mass);
+    EXPECT_NE(on_backend, mass.data()) << "the kernels must read the back end's copy";
+    EXPECT_EQ(on_backend[1], 2.0);
+    mirror.table(0, mass);
+    EXPECT_EQ(exec::transfers().arrays - before.arrays, 1u) << "unchanged: not copied again";
+    mass.push_back(15.0);
+    EXPECT_EQ(mirror.table(0, mass)[2], 15.0);
+    EXPECT_EQ(exec::transfers().arrays - before.arrays, 2u);
 }
