@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "field_packing.hpp"
+#include "ghost_image.hpp"
 
 namespace emergent::decomp {
 
@@ -128,16 +129,23 @@ void HaloExchange::gather(std::vector<Vec3>& field, bool is_position) {
     for (const Swap& swap : swaps_) {
         const std::size_t n = swap.export_index.size();
         send_vectors_.resize(n);
-        const Vec3* x = field.data();
         const Vec3 offset = is_position ? swap.shift : Vec3{0, 0, 0};
-        if (swap.turns)
-            for (std::size_t k = 0; k < n; ++k)
-                send_vectors_[k] = wedge_.rotate(x[swap.export_index[k]], swap.turns) + offset;
-        else
-            for (std::size_t k = 0; k < n; ++k) send_vectors_[k] = x[swap.export_index[k]] + offset;
+        const GhostImage image{field.data(), swap.export_index.data(), send_vectors_.data(),
+                               wedge_, swap.turns, offset};
+        for (std::size_t k = 0; k < n; ++k) image(k);
         exchange(swap, send_vectors_.data(), n * sizeof(Vec3), field.data() + swap.import_first,
                  swap.import_count * sizeof(Vec3), kDataTag);
     }
+}
+
+HaloExchange::SwapPlan HaloExchange::swap_plan(std::size_t k) const {
+    const Swap& s = swaps_.at(k);
+    return SwapPlan{s.to_self, s.shift, s.turns, s.import_first, s.import_count};
+}
+
+void HaloExchange::exchange_bytes(std::size_t k, const void* send, std::size_t send_bytes,
+                                  void* recv, std::size_t recv_bytes) const {
+    exchange(swaps_.at(k), send, send_bytes, recv, recv_bytes, kDataTag);
 }
 
 }  // namespace emergent::decomp

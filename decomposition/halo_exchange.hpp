@@ -36,6 +36,25 @@ public:
     /// Number of ghosts imported by the last build.
     std::size_t n_ghost() const { return n_ghost_; }
 
+    /// The plan as a back end needs it to refresh ghosts where the particles live (the plan
+    /// itself stays host code): swap k sends decomp::GhostImage copies of export_index(k)
+    /// (rotated by `turns` wedge steps, then shifted) to ghosts [import_first, import_first +
+    /// import_count) of the receiving rank, itself when `to_self`. Swaps run in order: later
+    /// ones re-export ghosts of earlier ones.
+    struct SwapPlan {
+        bool to_self;
+        Vec3 shift;
+        int turns;
+        std::size_t import_first, import_count;
+    };
+    std::size_t n_swaps() const { return swaps_.size(); }
+    SwapPlan swap_plan(std::size_t k) const;
+    const std::vector<int>& export_index(std::size_t k) const { return swaps_.at(k).export_index; }
+    const Wedge& wedge() const { return wedge_; }
+    /// Sends swap k's packed copies (host memory) and receives its ghosts' into `recv`.
+    void exchange_bytes(std::size_t k, const void* send, std::size_t send_bytes, void* recv,
+                        std::size_t recv_bytes) const;
+
 private:
     void gather(std::vector<Vec3>& field, bool is_position);
 

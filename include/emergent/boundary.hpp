@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "emergent/backend_particles.hpp"
 #include "emergent/box.hpp"
 #include "emergent/macros.hpp"
 #include "emergent/particle_store.hpp"
@@ -79,7 +80,6 @@ struct WallExchange {
 
 /// What a rule needs besides the particles.
 struct BoundaryContext {
-    const std::vector<double>* mass = nullptr;  ///< per species
     double dt = 0;
     long long step = 0;  ///< the step being taken (keys the wall's random draws)
     /// The region; along its periodic axes a wall reads impact points in the primary image,
@@ -97,9 +97,11 @@ public:
     virtual std::string name() const = 0;
     /// False when the rule exchanges energy with the particles (thermal or moving walls).
     virtual bool conservative() const = 0;
-    /// Applies the rule. A particle it cannot return to the fluid side (it jumped across the
-    /// whole region, or is not finite) is described in `fault` (first one only).
-    virtual void apply(ParticleStore& store, const BoundaryContext& context, std::string& fault) = 0;
+    /// Applies the rule to the owned particles, where the back end holds them. A particle it
+    /// cannot return to the fluid side (it jumped across the whole region, or is not finite)
+    /// is described in `fault` (first one only).
+    virtual void apply(const BackendParticles& particles, const BoundaryContext& context,
+                       std::string& fault) = 0;
     /// Exchange summed over every hit since the rule was made, on this rank.
     const WallExchange& exchange() const { return exchange_; }
     /// Sets the tally (a run continued from a checkpoint).

@@ -31,6 +31,13 @@ struct Then {
     }
 };
 
+/// a[i] as a double: sums an array through transform_sum.
+template <class T>
+struct ElementOf {
+    const T* a;
+    EMERGENT_HD double operator()(std::size_t i) const { return static_cast<double>(a[i]); }
+};
+
 /// Host<->device traffic of this process, counted by the back ends: whole arrays (particle
 /// data, lists) apart from scalars (a reduction's result, a flag), so a test can assert that a
 /// step moves no array. The host back end moves nothing.
@@ -41,6 +48,11 @@ struct Transfers {
 inline Transfers& transfers() {
     static Transfers counts;
     return counts;
+}
+/// Counts a result of `bytes` the host read back from a back end's memory.
+inline void count_scalar(std::size_t bytes) {
+    transfers().scalars += 1;
+    transfers().scalar_bytes += bytes;
 }
 
 /// Host back end: plain loops the compiler can vectorise.

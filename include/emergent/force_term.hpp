@@ -2,11 +2,14 @@
 // A contribution to the forces: pair potentials, walls, external fields.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <string>
 
 #include <vector>
 
+#include "emergent/backend_particles.hpp"
 #include "emergent/box.hpp"
 #include "emergent/particle_store.hpp"
 
@@ -49,6 +52,14 @@ public:
     /// Adds the term's forces to store.force; when `sample`, also its energy and virial.
     virtual void add_forces(ParticleStore& store, const NeighbourList& list,
                             const ForceContext& context, bool sample, ForceSums& sums) const = 0;
+    /// True when the term also has the back end's form below: then the engine can keep the
+    /// particles on the back end through the force computation.
+    virtual bool on_backend() const { return false; }
+    /// The back end's form: adds the forces of the owned particles to particles.force, as
+    /// functors through the execution layer over the full list; when `sample`, also energy and
+    /// virial, with the same meaning as add_forces().
+    virtual void add_forces_on_backend(const BackendParticles& particles, const ForceContext& context,
+                                       bool sample, ForceSums& sums) const;
 };
 
 /// Lennard-Jones 4 eps [(sigma/r)^12 - (sigma/r)^6], truncated at `cutoff` and shifted to zero

@@ -43,6 +43,17 @@ enum class Backend {
     Cuda,
 };
 
+/// How the neighbour list is laid out (run parameter `neighbour_list`).
+enum class ListLayout {
+    /// Half on the host back end, full on the others (when every force term has a back-end form).
+    Auto,
+    /// Each pair once, forces on both members (Newton's third law): the host's fastest.
+    Half,
+    /// Each pair under both members, each particle summing its own force: the layout a device
+    /// needs, run on the host to check the device's loops bitwise against the checking back end.
+    Full,
+};
+
 struct RunSettings {
     double dt = 0.005;
     double skin = 0.3;
@@ -51,6 +62,7 @@ struct RunSettings {
     Integrator integrator = Integrator::VelocityVerlet;
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
     Backend backend = Backend::Host;
+    ListLayout list_layout = ListLayout::Auto;
 };
 
 /// Bounds of the run-time guards; 0 switches a bound off.

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "emergent/backend_particles.hpp"
 #include "emergent/particle_store.hpp"
 
 namespace emergent {
@@ -20,9 +21,9 @@ class WallLayerThermostat {
 public:
     WallLayerThermostat(int axis, double lo, double hi, double temperature, long long interval);
 
-    /// Acts when step % interval == 0. Collective: every rank calls it at every step.
-    void apply(ParticleStore& store, const std::vector<double>& mass, MPI_Comm comm,
-               long long step);
+    /// Acts on the owned particles where the back end holds them, when step % interval == 0.
+    /// Collective: every rank calls it at every step.
+    void apply(const BackendParticles& particles, MPI_Comm comm, long long step);
 
     /// Kinetic energy the layer rescaling has given the fluid since it was made (all ranks;
     /// the same on every rank). Negative where it cools.

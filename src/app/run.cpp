@@ -94,6 +94,10 @@ RunSettings run_settings(const Config& cfg) {
     settings.backend = backend == "cuda"       ? Backend::Cuda
                        : backend == "checking" ? Backend::Checking
                                                : Backend::Host;
+    const std::string& layout = cfg.text("neighbour_list");
+    settings.list_layout = layout == "full"   ? ListLayout::Full
+                           : layout == "half" ? ListLayout::Half
+                                              : ListLayout::Auto;
     return settings;
 }
 

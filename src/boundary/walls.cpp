@@ -17,16 +17,16 @@ using boundary::WallGeometry;
 /// Shared part of both walls: the particles beyond the wall bounce off it with NewVelocity;
 /// the wall's running tally and the first fault (a particle it could not return) are kept.
 template <class NewVelocity>
-void bounce(const WallGeometry& wall, ParticleStore& store, const BoundaryContext& context,
+void bounce(const WallGeometry& wall, const BackendParticles& p, const BoundaryContext& context,
             const NewVelocity& new_velocity, WallExchange& exchange, std::string& fault,
             const std::string& name) {
     const boundary::Bounce<NewVelocity> one{wall,
                                             new_velocity,
-                                            store.position.data(),
-                                            store.velocity.data(),
-                                            store.species.data(),
-                                            context.mass->data(),
-                                            store.id.data(),
+                                            p.position,
+                                            p.velocity,
+                                            p.species,
+                                            p.mass,
+                                            p.id,
                                             context.dt,
                                             context.time,
                                             context.box != nullptr,
@@ -37,16 +37,18 @@ void bounce(const WallGeometry& wall, ParticleStore& store, const BoundaryContex
     tally.angular_momentum = exchange.angular_momentum;
     tally.energy = exchange.energy;
     boundary::with_crossing_test(wall.shape, [&](auto beyond) {
-        const boundary::IsBeyond<decltype(beyond)> selected{beyond, store.position.data()};
-        tally = exec::transform_sum_if(exec::Host{}, store.n_owned(), tally, selected, one);
+        const boundary::IsBeyond<decltype(beyond)> selected{beyond, p.position};
+        tally = exec::transform_sum_if(exec::Host{}, p.n_owned, tally, selected, one);
     });
+    if (p.separate) exec::count_scalar(sizeof(tally));
     exchange.hits = tally.hits;
     exchange.momentum = tally.momentum;
     exchange.angular_momentum = tally.angular_momentum;
     exchange.energy = tally.energy;
-    if (fault.empty() && tally.first_fault < store.n_owned()) {
+    if (fault.empty() && tally.first_fault < p.n_owned) {
+        if (p.separate) exec::count_scalar(sizeof(std::int64_t));  // the offender's id
         std::ostringstream msg;
-        msg << "particle id " << store.id[tally.first_fault] << " could not be returned inside "
+        msg << "particle id " << p.id[tally.first_fault] << " could not be returned inside "
             << name << " at step " << context.step << " (it crossed the region in one step?)";
         fault = msg.str();
     }
@@ -59,8 +61,8 @@ public:
     bool conservative() const override {
         return wall_.motion.omega == 0 && dot(wall_.motion.velocity, wall_.motion.velocity) == 0;
     }
-    void apply(ParticleStore& store, const BoundaryContext& context, std::string& fault) override {
-        bounce(wall_, store, context, boundary::Reflect{}, exchange_, fault, name());
+    void apply(const BackendParticles& p, const BoundaryContext& context, std::string& fault) override {
+        bounce(wall_, p, context, boundary::Reflect{}, exchange_, fault, name());
     }
 
 private:
@@ -74,10 +76,10 @@ public:
         : wall_{shape, motion}, temperature_(temperature), seed_(seed) {}
     std::string name() const override { return "thermal wall"; }
     bool conservative() const override { return false; }
-    void apply(ParticleStore& store, const BoundaryContext& context, std::string& fault) override {
+    void apply(const BackendParticles& p, const BoundaryContext& context, std::string& fault) override {
         const boundary::Rethermalise rethermalise{temperature_, seed_,
                                                   static_cast<std::uint64_t>(context.step)};
-        bounce(wall_, store, context, rethermalise, exchange_, fault, name());
+        bounce(wall_, p, context, rethermalise, exchange_, fault, name());
     }
 
 private:

@@ -59,6 +59,10 @@ Schema run_schema() {
                 "checking (the host back end with its data kept apart from the host copy, which "
                 "is poisoned between syncs: bitwise host's results, for tests), auto (host for "
                 "now; cuda once the step runs there)")
+        .choice("neighbour_list", "auto", {"auto", "half", "full"},
+                "neighbour-list layout: half (each pair once, the host's fastest), full (each pair "
+                "under both members, the device's layout; every force term must have a back-end "
+                "form), auto (half on the host back end, full elsewhere where the terms allow)")
         .integer("equilibration_steps", 1000, 0, 1e12, "steps",
                  "steps run first, excluded from averages and timing")
         .integer("steps", 10000, 0, 1e12, "steps", "measured steps (averaged and timed)")
@@ -90,9 +94,9 @@ Schema run_schema() {
               "particle elements written per frame (comma-separated)");
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})
-        .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "equilibration_steps", "steps",
-                     "sample_every", "seed", "grid", "progress_interval", "checkpoint_every",
-                     "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
+        .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "neighbour_list",
+                     "equilibration_steps", "steps", "sample_every", "seed", "grid",
+                     "progress_interval", "checkpoint_every", "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
                      "guard.max_overlap", "guard.max_energy_drift", "output.every",
                      "output.elements"});
     return s;

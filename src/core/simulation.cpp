@@ -16,6 +16,7 @@
 #include "emergent/execution.hpp"
 #include "emergent/gpu.hpp"
 #include "emergent/random.hpp"
+#include "execution/backend_halo.hpp"
 #include "execution/particle_mirror.hpp"
 #include "integrate/kick_drift.hpp"
 #include "integrate/particle_sums.hpp"
@@ -68,6 +69,16 @@ struct Simulation::Engine {
     /// The particle arrays in the back end's memory; null on the host back end, whose loops
     /// work on the store itself.
     std::unique_ptr<exec::ParticleMirror> mirror;
+    /// Full neighbour list, force terms in their back-end form (ListLayout).
+    bool full_list = false;
+    const std::uint32_t *list_offset = nullptr, *list_index = nullptr;  ///< where the back end reads it
+    std::vector<Real> energy_scratch, virial_scratch;  ///< host back end's per-particle sums
+    /// With a mirror, the rebuild test and the ghosts' positions run on the back end too.
+    exec::BackendHalo backend_halo;
+    const Vec3* reference_on_backend = nullptr;  ///< positions at the last list build
+    // The mirror's buffers the engine fills.
+    enum Upload : std::size_t { kListOffsets, kListIndex, kHaloIndex, kReference };
+    enum Scratch : std::size_t { kEnergy, kVirial, kHaloPack };
 
     // Each part of the step says what it reads and writes where it runs: on the back end
     // (functors through the execution layer, on the mirror's arrays) or as host code on the
@@ -89,6 +100,10 @@ struct Simulation::Engine {
     /// Bringing the host's copy up to date is no change of the simulation's state, so const
     /// members may sync.
     ParticleStore& host_store() const { return const_cast<ParticleStore&>(store); }
+    /// A reduction's result the host reads back from the back end (counted as a device would).
+    void read_back(std::size_t bytes) const {
+        if (mirror) exec::count_scalar(bytes);
+    }
     /// Per-species masses where the back end's loops read them.
     const double* masses() const { return mirror ? mirror->table(0, mass) : mass.data(); }
     const double* inverse_masses() const {
@@ -127,6 +142,58 @@ struct Simulation::Engine {
         n_global = decomp::sum(comm, static_cast<long long>(store.n_owned()));
         if (particle_fields & kDiameter) store.enable_diameters();  // contacts read them
         store.fit_capacity();
+        choose_list_layout();
+    }
+
+    void choose_list_layout() {
+        const ListLayout layout = settings.list_layout;
+        std::string host_only;
+        for (const auto& term : forces)
+            if (!term->on_backend() && host_only.empty()) host_only = term->name();
+        if (layout == ListLayout::Full && !host_only.empty())
+            throw InputError("neighbour_list=full: force term '" + host_only +
+                             "' has no back-end form yet (use half or auto)");
+        full_list = layout == ListLayout::Full ||
+                    (layout == ListLayout::Auto && settings.backend != Backend::Host && host_only.empty());
+    }
+
+    /// The particles and the full list as the back end's loops see them.
+    BackendParticles backend_particles() {
+        BackendParticles p;
+        p.position = data(kPosition, store.position);
+        p.velocity = data(kVelocity, store.velocity);
+        p.force = data(kForce, store.force);
+        p.species = data(kSpecies, store.species);
+        p.id = data(kId, store.id);
+        p.separate = mirror != nullptr;
+        p.diameter = store.has_diameters() ? data(kDiameter, store.diameter) : nullptr;
+        p.mass = masses();
+        p.n_owned = store.n_owned();
+        p.size = store.size();
+        p.list_offset = list_offset;
+        p.list_index = list_index;
+        const std::size_t bytes = p.n_owned * sizeof(Real);
+        if (mirror) {
+            p.energy = static_cast<Real*>(mirror->scratch(kEnergy, bytes));
+            p.virial = static_cast<Real*>(mirror->scratch(kVirial, bytes));
+        } else {
+            energy_scratch.resize(p.n_owned);
+            virial_scratch.resize(p.n_owned);
+            p.energy = energy_scratch.data();
+            p.virial = virial_scratch.data();
+        }
+        return p;
+    }
+
+    /// The list where the back end reads it: uploaded after each build (host code builds it).
+    void place_full_list() {
+        list_offset = list.offsets();
+        list_index = list.neighbours();
+        if (!mirror) return;
+        list_offset = static_cast<const std::uint32_t*>(
+            mirror->upload(kListOffsets, list.offsets(), (list.n_owned() + 1) * sizeof(std::uint32_t)));
+        list_index = static_cast<const std::uint32_t*>(
+            mirror->upload(kListIndex, list.neighbours(), list.n_pairs() * sizeof(std::uint32_t)));
     }
 
     /// Re-partitions particles and rebuilds ghosts, cells and the Verlet list.
@@ -160,8 +227,19 @@ struct Simulation::Engine {
         // cells, so the search cannot assume those hold owned particles only.
         const bool mixed_cells =
             bodies() || (box.wedge.active() && box.wedge.n != 2 && box.wedge.n != 4);
-        list.build(store, cells, mixed_cells);
+        if (full_list) {
+            list.build_full(store, cells);
+            place_full_list();
+        } else {
+            list.build(store, cells, mixed_cells);
+        }
         moved_since_build = false;
+        if (mirror) {
+            const std::vector<Vec3>& reference = list.reference_positions();
+            reference_on_backend = static_cast<const Vec3*>(
+                mirror->upload(kReference, reference.data(), reference.size() * sizeof(Vec3)));
+            backend_halo.place(halo, *mirror, kHaloIndex);
+        }
         if (bodies()) rigid.index_constituents(store);
         ++rebuilds;
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
@@ -176,7 +254,21 @@ struct Simulation::Engine {
     /// time are placed there).
     void compute_forces(bool sample, double at) {
         PhaseTimer timer(times.force);
-        // Force terms are host code on the store so far.
+        if (full_list) {
+            backend_reads(particle_fields | ghost_fields | kSpecies);
+            BackendParticles particles = backend_particles();
+            exec::for_each(exec::Host{}, particles.size, integrate::ZeroVector{particles.force});
+            sums = ForceSums{};
+            const ForceContext context{&mass, box, at};
+            for (const auto& term : forces) term->add_forces_on_backend(particles, context, sample, sums);
+            backend_wrote(kForce);
+            if (bodies()) {
+                host_reads(kPosition | kBody | kForce);
+                rigid.sum_forces(store);
+            }
+            return;
+        }
+        // Force terms in their host form: host code on the store.
         host_reads(particle_fields | ghost_fields | (bodies() ? kPosition | kBody : 0u));
         std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
         sums = ForceSums{};
@@ -204,10 +296,11 @@ struct Simulation::Engine {
             host_wrote(kPosition | kVelocity);
         }
         if (boundaries.empty()) return;
-        host_reads(kPosition | kVelocity | kSpecies | kId);
-        const BoundaryContext context{&mass, drift, step, &box, at};
-        for (auto& rule : boundaries) rule->apply(store, context, boundary_fault);
-        host_wrote(kPosition | kVelocity);
+        backend_reads(kPosition | kVelocity | kSpecies | kId);
+        const BackendParticles particles = backend_particles();
+        const BoundaryContext context{drift, step, &box, at};
+        for (auto& rule : boundaries) rule->apply(particles, context, boundary_fault);
+        backend_wrote(kPosition | kVelocity);
     }
 
     void kick(double kick) {
@@ -228,20 +321,30 @@ struct Simulation::Engine {
     /// the last build, otherwise the ghosts follow their owners.
     void follow_drift() {
         bool needed;
-        {
+        if (mirror) {
             PhaseTimer timer(times.communicate);
-            // The rebuild criterion and the halo are host code so far.
-            host_reads(kPosition);
-            needed = list.needs_rebuild(store, comm);
+            backend_reads(kPosition);
+            Vec3* x = mirror->array<Vec3>(kPosition);
+            const double local = exec::transform_max(exec::Host{}, store.n_owned(), 0.0,
+                                                     SquaredDisplacement{x, reference_on_backend});
+            read_back(sizeof(double));  // the maximum
+            needed = list.rebuild_due(local, comm);
             if (!needed) {
-                halo.gather_positions(store);
-                host_wrote(kPosition);
-                // Contact forces with damping or friction need their partners' velocities.
-                if (ghost_fields & kVelocity) {
+                backend_halo.gather_positions(halo, *mirror, x, kHaloPack);
+                backend_wrote(kPosition);
+                if (ghost_fields & kVelocity) {  // host code so far
                     host_reads(kVelocity);
                     halo.gather_velocities(store);
                     host_wrote(kVelocity);
                 }
+            }
+        } else {
+            PhaseTimer timer(times.communicate);
+            needed = list.needs_rebuild(store, comm);
+            if (!needed) {
+                halo.gather_positions(store);
+                // Contact forces with damping or friction need their partners' velocities.
+                if (ghost_fields & kVelocity) halo.gather_velocities(store);
             }
         }
         if (needed) rebuild();
@@ -255,7 +358,9 @@ struct Simulation::Engine {
         const integrate::FreeKineticEnergy energy{
             data(kVelocity, store.velocity), data(kSpecies, store.species), masses(),
             store.has_rigid_fields() ? data(kBody, store.body) : nullptr};
-        return exec::transform_sum<double>(exec::Host{}, store.n_owned(), energy) + rigid.kinetic();
+        const double sum = exec::transform_sum<double>(exec::Host{}, store.n_owned(), energy);
+        read_back(sizeof(double));
+        return sum + rigid.kinetic();
     }
 
     long long n_free = 0, n_bodies = 0;
@@ -288,9 +393,10 @@ struct Simulation::Engine {
     void apply_wall_layers() {
         if (wall_layers.empty()) return;
         PhaseTimer timer(times.integrate);
-        host_reads(kPosition | kVelocity | kSpecies);
-        for (auto& layer : wall_layers) layer->apply(store, mass, comm, step);
-        host_wrote(kVelocity);
+        backend_reads(kPosition | kVelocity | kSpecies);
+        const BackendParticles particles = backend_particles();
+        for (auto& layer : wall_layers) layer->apply(particles, comm, step);
+        backend_wrote(kVelocity);
     }
 
     void require_grid(const char* what) const {
@@ -458,6 +564,7 @@ void Simulation::check_guards(const GuardLimits& limits) const {
     const integrate::UnfitState unfit{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
                                       e.data(kForce, s.force), f2max};
     const std::size_t i = problem.empty() ? exec::first_index(exec::Host{}, s.n_owned(), unfit) : s.n_owned();
+    e.read_back(sizeof(std::size_t));
     if (i < s.n_owned()) {
         e.host_reads(kPosition | kVelocity | kForce | kId);  // to name the offender
         const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
@@ -614,6 +721,7 @@ ThermoSample Simulation::measure() const {
         integrate::FreeMomenta{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
                                e.data(kImage, s.image), e.data(kSpecies, s.species), e.masses(),
                                s.has_rigid_fields() ? e.data(kBody, s.body) : nullptr, len});
+    e.read_back(sizeof(free));
     const Vec3 pb = e.rigid.momentum(), lb = e.rigid.angular_momentum(len);
     double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
     for (int d = 0; d < 3; ++d) v[3 + d] = free.linear[d] + pb[d], v[6 + d] = free.angular[d] + lb[d];

@@ -2,6 +2,7 @@
 // The particle arrays in a back end's memory; the checking host memory.
 #include "execution/particle_mirror.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <new>
@@ -42,25 +43,55 @@ ParticleMirror::ParticleMirror(std::unique_ptr<ArrayMemory> memory, bool poison_
 
 ParticleMirror::~ParticleMirror() {
     for (auto& a : arrays_) memory_->release(a.data);
-    for (auto& t : tables_) memory_->release(t.data);
+    for (auto* list : {&tables_, &uploads_, &scratch_})
+        for (auto& b : *list) memory_->release(b.data);
+}
+
+ParticleMirror::Buffer& ParticleMirror::buffer(std::vector<Buffer>& list, std::size_t slot,
+                                               std::size_t bytes) {
+    if (slot >= list.size()) list.resize(slot + 1);
+    Buffer& b = list[slot];
+    if (bytes > b.capacity || !b.data) {
+        const std::size_t capacity = std::max<std::size_t>(bytes + bytes / 32, 8);
+        void* grown = memory_->allocate(capacity);
+        memory_->release(b.data);
+        b.data = grown;
+        b.capacity = capacity;
+        b.copied.clear();
+    }
+    return b;
 }
 
 const double* ParticleMirror::table(std::size_t slot, const std::vector<double>& values) {
-    if (slot >= tables_.size()) tables_.resize(slot + 1);
-    Table& t = tables_[slot];
-    if (t.data && t.copied == values) return static_cast<const double*>(t.data);
-    if (values.size() > t.capacity) {
-        void* grown = memory_->allocate(values.size() * sizeof(double));
-        memory_->release(t.data);
-        t.data = grown;
-        t.capacity = values.size();
-    }
-    if (!t.data) t.data = memory_->allocate(sizeof(double));
+    if (slot < tables_.size() && tables_[slot].data && tables_[slot].copied == values)
+        return static_cast<const double*>(tables_[slot].data);
     const std::size_t bytes = values.size() * sizeof(double);
-    memory_->to_backend(t.data, values.data(), bytes);
+    Buffer& b = buffer(tables_, slot, bytes);
+    memory_->to_backend(b.data, values.data(), bytes);
     count_array(bytes);
-    t.copied = values;
-    return static_cast<const double*>(t.data);
+    b.copied = values;
+    return static_cast<const double*>(b.data);
+}
+
+const void* ParticleMirror::upload(std::size_t slot, const void* data, std::size_t bytes) {
+    Buffer& b = buffer(uploads_, slot, bytes);
+    memory_->to_backend(b.data, data, bytes);
+    count_array(bytes);
+    return b.data;
+}
+
+void* ParticleMirror::scratch(std::size_t slot, std::size_t bytes) {
+    return buffer(scratch_, slot, bytes).data;
+}
+
+void ParticleMirror::copy_to_host(void* to, const void* from, std::size_t bytes) {
+    memory_->to_host(to, from, bytes);
+    count_array(bytes);
+}
+
+void ParticleMirror::copy_to_backend(void* to, const void* from, std::size_t bytes) {
+    memory_->to_backend(to, from, bytes);
+    count_array(bytes);
 }
 
 void* ParticleMirror::find(FieldMask field) const {

@@ -49,6 +49,15 @@ public:
     /// copied to table `slot` when they differ from what was copied there last (counted as an
     /// array), so a kernel never reads host memory.
     const double* table(std::size_t slot, const std::vector<double>& values);
+    /// Copies `bytes` from host memory to buffer `slot` on the back end (counted as an array):
+    /// for what the host still builds, such as the neighbour list.
+    const void* upload(std::size_t slot, const void* data, std::size_t bytes);
+    /// Buffer `slot` of at least `bytes` on the back end, contents undefined: scratch for
+    /// kernels.
+    void* scratch(std::size_t slot, std::size_t bytes);
+    /// Copies between back-end and host memory for staging (MPI), each counted as an array.
+    void copy_to_host(void* to, const void* from, std::size_t bytes);
+    void copy_to_backend(void* to, const void* from, std::size_t bytes);
 
     /// The back end's array of `field` (null if it has none yet), as T*.
     template <class T>
@@ -68,16 +77,18 @@ private:
     /// Gives every field of the store an array of at least store.size() elements.
     void fit(ParticleStore& store);
 
-    struct Table {
-        std::vector<double> copied;  ///< what the back end holds
+    struct Buffer {
         void* data = nullptr;
-        std::size_t capacity = 0;
+        std::size_t capacity = 0;  ///< bytes
+        std::vector<double> copied;  ///< tables: what the back end holds
     };
+    /// Buffer `slot` of `list`, grown to at least `bytes` (contents not kept).
+    Buffer& buffer(std::vector<Buffer>& list, std::size_t slot, std::size_t bytes);
 
     std::unique_ptr<ArrayMemory> memory_;
     bool poison_;
     std::vector<Array> arrays_;
-    std::vector<Table> tables_;
+    std::vector<Buffer> tables_, uploads_, scratch_;
     std::size_t size_ = 0;
     unsigned host_stale_ = 0, backend_stale_ = kAllFields;
 };

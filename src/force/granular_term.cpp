@@ -132,20 +132,29 @@ public:
     explicit UniformField(const Vec3& g) : g_(g) {}
     std::string name() const override { return "uniform-field"; }
     double cutoff() const override { return 0; }
+    bool on_backend() const override { return true; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
                     bool sample, ForceSums& sums) const override {
-        // The sampling in its own pass: the force pass is then a plain streaming add (it runs
-        // every step for every particle).
-        const std::size_t n = list.n_owned();
-        exec::for_each(exec::Host{}, n,
-                       force::AddUniformField{s.force.data(), s.species.data(), c.mass->data(), g_});
-        if (!sample) return;
-        sums.potential += exec::transform_sum<double>(
-            exec::Host{}, n,
-            force::UniformFieldEnergy{s.position.data(), s.species.data(), c.mass->data(), g_});
+        add(s.position.data(), s.force.data(), s.species.data(), c.mass->data(), list.n_owned(),
+            sample, sums);
+    }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
+                               ForceSums& sums) const override {
+        add(p.position, p.force, p.species, p.mass, p.n_owned, sample, sums);
+        if (sample && p.separate) exec::count_scalar(sizeof(double));
     }
 
 private:
+    void add(const Vec3* x, Vec3* f, const int* species, const double* mass, std::size_t n,
+             bool sample, ForceSums& sums) const {
+        // The sampling in its own pass: the force pass is then a plain streaming add (it runs
+        // every step for every particle).
+        exec::for_each(exec::Host{}, n, force::AddUniformField{f, species, mass, g_});
+        if (!sample) return;
+        sums.potential +=
+            exec::transform_sum<double>(exec::Host{}, n, force::UniformFieldEnergy{x, species, mass, g_});
+    }
+
     Vec3 g_;
 };
 

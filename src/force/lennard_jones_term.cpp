@@ -3,7 +3,9 @@
 #include <sstream>
 
 #include "emergent/error.hpp"
+#include "emergent/execution.hpp"
 #include "force/lennard_jones.hpp"
+#include "force/pair_full_list.hpp"
 #include "force/pair_loop.hpp"
 
 namespace emergent {
@@ -31,6 +33,27 @@ public:
             force::pair_forces_half_list<force::PairFeatures<true>>(store, list, eval_, sums);
         else
             force::pair_forces_half_list<force::PairFeatures<false>>(store, list, eval_, sums);
+    }
+
+    bool on_backend() const override { return !generic_; }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
+                               ForceSums& sums) const override {
+        const force::CompressedNeighbours list{p.list_offset, p.list_index};
+        if (!sample) {
+            exec::for_each(exec::Host{}, p.n_owned,
+                           force::PairForceFullList<force::LennardJones>{
+                               p.position, p.force, list, eval_, {}, nullptr, nullptr, true});
+            return;
+        }
+        exec::for_each(exec::Host{}, p.n_owned,
+                       force::PairForceFullList<force::LennardJones, force::CompressedNeighbours,
+                                                force::DirectSeparation, true>{
+                           p.position, p.force, list, eval_, {}, p.energy, p.virial, true});
+        // Each particle holds half of each of its pairs: an owned-ghost pair's other half is
+        // counted by the rank that owns the ghost, as with the half list.
+        sums.potential += exec::transform_sum<double>(exec::Host{}, p.n_owned, exec::ElementOf<Real>{p.energy});
+        sums.virial += exec::transform_sum<double>(exec::Host{}, p.n_owned, exec::ElementOf<Real>{p.virial});
+        if (p.separate) exec::count_scalar(2 * sizeof(double));
     }
 
 private:

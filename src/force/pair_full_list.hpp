@@ -76,6 +76,7 @@ struct PairForceFullList {
     Separation separation{};
     Real* energy = nullptr;
     Real* virial = nullptr;
+    bool accumulate = false;  ///< f[i] += the sum (after other terms) instead of f[i] = it
 
     EMERGENT_HD PairSums partial(std::size_t i, std::uint32_t first, std::uint32_t stride) const {
         using T = decltype(eval.cutoff_sq);
@@ -101,7 +102,7 @@ struct PairForceFullList {
     }
 
     EMERGENT_HD void store(std::size_t i, const PairSums& s) const {
-        f[i] = s.f;
+        f[i] = accumulate ? f[i] + s.f : s.f;
         if constexpr (Sample) {
             energy[i] = 0.5 * s.energy;
             virial[i] = 0.5 * s.virial;

@@ -44,6 +44,12 @@ struct Kick {
     }
 };
 
+/// a[i] = 0: forces cleared before the terms add theirs.
+struct ZeroVector {
+    Vec3* a;
+    EMERGENT_HD void operator()(std::size_t i) const { a[i] = Vec3{0, 0, 0}; }
+};
+
 /// v *= factor: global velocity rescaling (thermostats).
 struct ScaleVelocity {
     Vec3* v;

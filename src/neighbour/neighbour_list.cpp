@@ -173,7 +173,10 @@ double NeighbourList::max_displacement_sq(const ParticleStore& store) const {
 }
 
 bool NeighbourList::needs_rebuild(const ParticleStore& store, MPI_Comm comm) const {
-    double local = max_displacement_sq(store);
+    return rebuild_due(max_displacement_sq(store), comm);
+}
+
+bool NeighbourList::rebuild_due(double local, MPI_Comm comm) const {
     // NaN is mapped to +inf so the MPI max carries it to every rank.
     if (std::isnan(local)) local = std::numeric_limits<double>::infinity();
     double global = 0;

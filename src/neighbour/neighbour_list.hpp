@@ -54,6 +54,9 @@ public:
 
     /// True on every rank when some particle on any rank moved more than skin/2.
     bool needs_rebuild(const ParticleStore& store, MPI_Comm comm) const;
+    /// The same from this rank's largest squared displacement, found elsewhere (on a back
+    /// end). Collective; throws InstabilityError for a non-finite or impossible displacement.
+    bool rebuild_due(double local_max_displacement_sq, MPI_Comm comm) const;
 
     /// Owned positions when the list was built (the origin of the displacement check).
     const std::vector<Vec3>& reference_positions() const { return built_at_; }

@@ -17,14 +17,12 @@ WallLayerThermostat::WallLayerThermostat(int axis, double lo, double hi, double 
         throw std::invalid_argument("WallLayerThermostat: needs axis 0-2, hi > lo, T > 0, interval >= 1");
 }
 
-void WallLayerThermostat::apply(ParticleStore& store, const std::vector<double>& mass,
-                                MPI_Comm comm, long long step) {
+void WallLayerThermostat::apply(const BackendParticles& p, MPI_Comm comm, long long step) {
     if (step % interval_ != 0) return;
     const thermostat::InLayer layer{axis_, lo_, hi_};
     const thermostat::LayerSums local = exec::transform_sum<thermostat::LayerSums>(
-        exec::Host{}, store.n_owned(),
-        thermostat::LayerMember{store.position.data(), store.velocity.data(), store.species.data(),
-                                mass.data(), layer});
+        exec::Host{}, p.n_owned, thermostat::LayerMember{p.position, p.velocity, p.species, p.mass, layer});
+    if (p.separate) exec::count_scalar(sizeof(local));
     // Mass, momentum, 2 x kinetic energy and number of the layer's particles.
     double all[6] = {local.mass, local.momentum.x, local.momentum.y, local.momentum.z,
                      local.twice_kinetic, local.count};
@@ -38,9 +36,8 @@ void WallLayerThermostat::apply(ParticleStore& store, const std::vector<double>&
     const double dof = 3 * n - 2;
     if (!(twice_kinetic > 0)) return;
     const double factor = std::sqrt(temperature_ * dof / twice_kinetic);
-    exec::for_each(exec::Host{}, store.n_owned(),
-                   thermostat::RescaleLayer{store.position.data(), store.velocity.data(), layer,
-                                            factor, drift});
+    exec::for_each(exec::Host{}, p.n_owned,
+                   thermostat::RescaleLayer{p.position, p.velocity, layer, factor, drift});
     energy_ += 0.5 * (factor * factor * twice_kinetic - all[4]);
 }
 

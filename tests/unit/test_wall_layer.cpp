@@ -25,10 +25,10 @@ TEST(WallLayerThermostat, RescalesOnlyTheLayerToItsTemperatureWithoutDriftAlongT
     const ParticleStore before = store;
     WallLayerThermostat layer(2, 0.0, 2.0, 4.0, 10);
 
-    layer.apply(store, mass, MPI_COMM_WORLD, 7);  // not a multiple of the interval: nothing
+    layer.apply(host_view(store, mass), MPI_COMM_WORLD, 7);  // not a multiple of the interval: nothing
     for (std::size_t i = 0; i < store.n_owned(); ++i) EXPECT_EQ(store.velocity[i].x, before.velocity[i].x);
 
-    layer.apply(store, mass, MPI_COMM_WORLD, 20);
+    layer.apply(host_view(store, mass), MPI_COMM_WORLD, 20);
     double m = 0, px = 0, py = 0, pz = 0, pz0 = 0, twice_k = 0, n = 0, dk = 0;
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
         const double mi = mass[store.species[i]];

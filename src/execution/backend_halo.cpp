@@ -1,0 +1,49 @@
+// SPDX-License-Identifier: MIT
+// Ghost positions refreshed on the back end.
+#include "execution/backend_halo.hpp"
+
+#include "decomposition/ghost_image.hpp"
+#include "emergent/execution.hpp"
+
+namespace emergent::exec {
+
+void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror,
+                        std::size_t upload_slot) {
+    index_.clear();
+    first_.assign(1, 0);
+    for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
+        const std::vector<int>& e = halo.export_index(k);
+        index_.insert(index_.end(), e.begin(), e.end());
+        first_.push_back(index_.size());
+    }
+    index_on_backend_ =
+        static_cast<const int*>(mirror.upload(upload_slot, index_.data(), index_.size() * sizeof(int)));
+}
+
+void BackendHalo::gather_positions(const decomp::HaloExchange& halo, ParticleMirror& mirror,
+                                   Vec3* x, std::size_t scratch_slot) {
+    for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
+        const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
+        const std::size_t n = first_[k + 1] - first_[k];
+        const int* index = index_on_backend_ + first_[k];
+        if (plan.to_self) {
+            // Sources are owned particles and earlier swaps' ghosts, all before import_first:
+            // the copies can land in place.
+            exec::for_each(exec::Host{}, n,
+                           decomp::GhostImage{x, index, x + plan.import_first, halo.wedge(),
+                                              plan.turns, plan.shift});
+            continue;
+        }
+        Vec3* packed = static_cast<Vec3*>(mirror.scratch(scratch_slot, n * sizeof(Vec3)));
+        exec::for_each(exec::Host{}, n,
+                       decomp::GhostImage{x, index, packed, halo.wedge(), plan.turns, plan.shift});
+        send_.resize(n);
+        receive_.resize(plan.import_count);
+        mirror.copy_to_host(send_.data(), packed, n * sizeof(Vec3));
+        halo.exchange_bytes(k, send_.data(), n * sizeof(Vec3), receive_.data(),
+                            plan.import_count * sizeof(Vec3));
+        mirror.copy_to_backend(x + plan.import_first, receive_.data(), plan.import_count * sizeof(Vec3));
+    }
+}
+
+}  // namespace emergent::exec

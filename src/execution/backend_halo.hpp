@@ -1,0 +1,31 @@
+// SPDX-License-Identifier: MIT
+// Ghost positions refreshed where the particles live: the halo's plan (host code, made at each
+// list build) is carried out on the back end's arrays. Copies to this rank's own ghosts
+// (periodic and wedge images) never leave the back end; copies for other ranks are packed
+// there, staged through host memory for MPI and unpacked there (each crossing counted).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "decomposition/halo_exchange.hpp"
+#include "execution/particle_mirror.hpp"
+
+namespace emergent::exec {
+
+class BackendHalo {
+public:
+    /// After each halo build: every swap's export indices go to the back end as one array.
+    void place(const decomp::HaloExchange& halo, ParticleMirror& mirror, std::size_t upload_slot);
+    /// Ghost positions in `x` (the back end's array) from their owners, along the plan.
+    void gather_positions(const decomp::HaloExchange& halo, ParticleMirror& mirror, Vec3* x,
+                          std::size_t scratch_slot);
+
+private:
+    std::vector<int> index_;          ///< export indices of all swaps, swap after swap
+    std::vector<std::size_t> first_;  ///< where swap k's begin in index_
+    const int* index_on_backend_ = nullptr;
+    std::vector<Vec3> send_, receive_;  ///< host staging for other ranks
+};
+
+}  // namespace emergent::exec
