@@ -39,10 +39,13 @@ void BackendHalo::gather_positions(const decomp::HaloExchange& halo, ParticleMir
                        decomp::GhostImage{x, index, packed, halo.wedge(), plan.turns, plan.shift});
         send_.resize(n);
         receive_.resize(plan.import_count);
-        mirror.copy_to_host(send_.data(), packed, n * sizeof(Vec3));
+        // Every rank takes part in every swap (its partner waits for it), but a face without
+        // a neighbour (a wall) moves nothing: no copies then.
+        if (n > 0) mirror.copy_to_host(send_.data(), packed, n * sizeof(Vec3));
         halo.exchange_bytes(k, send_.data(), n * sizeof(Vec3), receive_.data(),
                             plan.import_count * sizeof(Vec3));
-        mirror.copy_to_backend(x + plan.import_first, receive_.data(), plan.import_count * sizeof(Vec3));
+        if (plan.import_count > 0)
+            mirror.copy_to_backend(x + plan.import_first, receive_.data(), plan.import_count * sizeof(Vec3));
     }
 }
 

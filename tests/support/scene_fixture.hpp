@@ -29,8 +29,8 @@ struct BuiltScene {
 };
 
 inline BuiltScene build_scene(MPI_Comm comm, const std::string& scene,
-                              const std::vector<std::string>& sets) {
-    const Config config = scene_config(scene, sets);
+                              const std::vector<std::string>& sets, const std::string& preset = "") {
+    const Config config = scene_config(scene, sets, preset);
     BuiltScene s;
     s.sim = std::make_unique<Simulation>(comm, app::run_settings(config));
     s.problem = ProblemRegistry::instance().find(scene)->factory(config);
@@ -42,8 +42,9 @@ inline BuiltScene build_scene(MPI_Comm comm, const std::string& scene,
 
 /// A built and initialised simulation of `scene` on `comm`.
 inline std::unique_ptr<Simulation> make_scene(MPI_Comm comm, const std::string& scene,
-                                              const std::vector<std::string>& sets) {
-    return build_scene(comm, scene, sets).sim;
+                                              const std::vector<std::string>& sets,
+                                              const std::string& preset = "") {
+    return build_scene(comm, scene, sets, preset).sim;
 }
 
 /// (id -> position) of every particle on every rank. Collective.
