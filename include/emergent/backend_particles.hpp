@@ -29,9 +29,11 @@ struct BackendParticles {
     /// list_offset[i + 1]). Null unless the run uses it (ListLayout).
     const std::uint32_t* list_offset = nullptr;
     const std::uint32_t* list_index = nullptr;
-    /// Per-particle scratch of n_owned values each, for energy and virial on sampling steps.
+    /// Per-particle scratch of n_owned values each, for sampling steps: energy, virial, and the
+    /// largest contact overlap (granular terms).
     Real* energy = nullptr;
     Real* virial = nullptr;
+    Real* overlap = nullptr;
     /// True when the arrays are not the host's: a result the host reads back (a sum, one
     /// particle's id) is then a transfer, counted with exec::count_scalar.
     bool separate = false;

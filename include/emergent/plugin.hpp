@@ -15,14 +15,15 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-9"  // 9: BackendParticles, ForceTerm::on_backend
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-10"  // 10: BackendParticles::overlap (9:
+                                                 //    BackendParticles, ForceTerm::on_backend
                                                  //    and add_forces_on_backend, ListLayout,
                                                  //    exec::ElementOf, BackendParticles for
                                                  //    boundary rules and wall layers (8: Backend,
                                                  //    RunSettings::backend, Simulation::backend;
                                                  //    4-7: the execution layer; 3:
                                                  //    Problem::expected_particles, ParamSpec::restart,
-                                                 //    ForceTerm::particle_fields)
+                                                 //    ForceTerm::particle_fields))
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \

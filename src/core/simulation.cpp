@@ -72,13 +72,13 @@ struct Simulation::Engine {
     /// Full neighbour list, force terms in their back-end form (ListLayout).
     bool full_list = false;
     const std::uint32_t *list_offset = nullptr, *list_index = nullptr;  ///< where the back end reads it
-    std::vector<Real> energy_scratch, virial_scratch;  ///< host back end's per-particle sums
+    std::vector<Real> energy_scratch, virial_scratch, overlap_scratch;  ///< host back end's sums
     /// With a mirror, the rebuild test and the ghosts' positions run on the back end too.
     exec::BackendHalo backend_halo;
     const Vec3* reference_on_backend = nullptr;  ///< positions at the last list build
     // The mirror's buffers the engine fills.
     enum Upload : std::size_t { kListOffsets, kListIndex, kHaloIndex, kReference };
-    enum Scratch : std::size_t { kEnergy, kVirial, kHaloPack };
+    enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack };
 
     // Each part of the step says what it reads and writes where it runs: on the back end
     // (functors through the execution layer, on the mirror's arrays) or as host code on the
@@ -176,11 +176,14 @@ struct Simulation::Engine {
         if (mirror) {
             p.energy = static_cast<Real*>(mirror->scratch(kEnergy, bytes));
             p.virial = static_cast<Real*>(mirror->scratch(kVirial, bytes));
+            p.overlap = static_cast<Real*>(mirror->scratch(kOverlap, bytes));
         } else {
             energy_scratch.resize(p.n_owned);
             virial_scratch.resize(p.n_owned);
+            overlap_scratch.resize(p.n_owned);
             p.energy = energy_scratch.data();
             p.virial = virial_scratch.data();
+            p.overlap = overlap_scratch.data();
         }
         return p;
     }
@@ -330,12 +333,13 @@ struct Simulation::Engine {
             read_back(sizeof(double));  // the maximum
             needed = list.rebuild_due(local, comm);
             if (!needed) {
-                backend_halo.gather_positions(halo, *mirror, x, kHaloPack);
+                backend_halo.gather(halo, *mirror, x, true, kHaloPack);
                 backend_wrote(kPosition);
-                if (ghost_fields & kVelocity) {  // host code so far
-                    host_reads(kVelocity);
-                    halo.gather_velocities(store);
-                    host_wrote(kVelocity);
+                // Contact forces with damping or friction need their partners' velocities.
+                if (ghost_fields & kVelocity) {
+                    backend_reads(kVelocity);
+                    backend_halo.gather(halo, *mirror, mirror->array<Vec3>(kVelocity), false, kHaloPack);
+                    backend_wrote(kVelocity);
                 }
             }
         } else {

@@ -17,9 +17,11 @@ class BackendHalo {
 public:
     /// After each halo build: every swap's export indices go to the back end as one array.
     void place(const decomp::HaloExchange& halo, ParticleMirror& mirror, std::size_t upload_slot);
-    /// Ghost positions in `x` (the back end's array) from their owners, along the plan.
-    void gather_positions(const decomp::HaloExchange& halo, ParticleMirror& mirror, Vec3* x,
-                          std::size_t scratch_slot);
+    /// Ghost values of `field` (the back end's array) from their owners, along the plan:
+    /// positions (shifted across periodic boundaries) or velocities (never shifted); both
+    /// rotated across wedge faces.
+    void gather(const decomp::HaloExchange& halo, ParticleMirror& mirror, Vec3* field,
+                bool is_position, std::size_t scratch_slot);
 
 private:
     std::vector<int> index_;          ///< export indices of all swaps, swap after swap

@@ -30,6 +30,48 @@ EMERGENT_HD inline Vec3 contact_force(const Vec3& n, Real overlap, const Vec3& v
     return f;
 }
 
+/// The contact laws of up to kContactTableSpecies species by value (n_species^2 entries,
+/// row-major): small enough to travel with a kernel's arguments, so no table lives in host
+/// memory while a device loop reads it.
+constexpr int kContactTableSpecies = 4;
+struct ContactTable {
+    GranularPair pair[kContactTableSpecies * kContactTableSpecies];
+};
+
+/// Force on a sphere from a flat wall normal to `axis` (the sphere on the side `side`, +1 or
+/// -1), moving with `wall_velocity`, for a sphere of contact range r_c = range d_i / 2. With
+/// Sample, energy[i] and overlap[i] (in diameters) get the contact's elastic energy and overlap,
+/// 0 without contact.
+template <bool Sample, bool Damping, bool Friction>
+struct PlaneWallForce {
+    const Vec3* x;
+    const Vec3* v;
+    const Real* diameter;
+    Vec3* f;
+    int axis;
+    Real side, position, range;
+    GranularPair p;
+    Vec3 wall_velocity;
+    Real* energy = nullptr;
+    Real* overlap = nullptr;
+
+    EMERGENT_HD void operator()(std::size_t i) const {
+        const Real h = side * (x[i][axis] - position);
+        const Real rc = 0.5 * range * diameter[i];
+        if (h >= rc) {
+            if constexpr (Sample) energy[i] = overlap[i] = 0;
+            return;
+        }
+        Vec3 n{0, 0, 0};
+        n[axis] = side;
+        f[i] += contact_force<Damping, Friction>(n, rc - h, v[i] - wall_velocity, p);
+        if constexpr (Sample) {
+            energy[i] = 0.5 * p.k_n * (rc - h) * (rc - h);
+            overlap[i] = (rc - h) / diameter[i];
+        }
+    }
+};
+
 /// Throws InputError naming `what` unless k_n > 0 and gamma_n, gamma_s, mu >= 0.
 void check_granular_pair(const GranularPair& p, const std::string& what);
 

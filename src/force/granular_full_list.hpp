@@ -23,7 +23,7 @@ struct ContactForceFullList {
     Vec3* f;
     const std::uint32_t* offset;
     const std::uint32_t* index;
-    const GranularPair* table;  ///< n_species^2, row-major, on the back end
+    ContactTable table;  ///< by value
     int n_species;
     Real half_range;  ///< r_c = half_range (d_i + d_j)
     // Sampling steps: half of each contact's energy and r.f, and the largest overlap per
@@ -44,7 +44,7 @@ struct ContactForceFullList {
             if (r2 >= rc * rc) continue;
             const Real dist = std::sqrt(r2);
             const GranularPair& p =
-                Features::species_table ? table[species[i] * n_species + species[j]] : table[0];
+                Features::species_table ? table.pair[species[i] * n_species + species[j]] : table.pair[0];
             const Vec3 fij = contact_force<Features::damping, Features::friction>(
                 (1 / dist) * r, rc - dist, vi - v[j], p);
             fi += fij;

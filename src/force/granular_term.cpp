@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "emergent/error.hpp"
 #include "emergent/execution.hpp"
 #include "force/dispatch.hpp"
 #include "force/granular_contact.hpp"
+#include "force/granular_full_list.hpp"
 #include "force/uniform_field.hpp"
 #include "neighbour/neighbour_list.hpp"
 
@@ -72,31 +74,48 @@ struct ContactLoop {
     }
 };
 
-/// Wall contacts for the features chosen by dispatch_bools.
-struct WallLoop {
-    ParticleStore& s;
-    std::size_t n_owned;
+/// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.
+void add_sampled(const BackendParticles& p, std::size_t n, bool virial, ForceSums& sums) {
+    sums.potential += exec::transform_sum<double>(exec::Host{}, n, exec::ElementOf<Real>{p.energy});
+    if (virial) sums.virial += exec::transform_sum<double>(exec::Host{}, n, exec::ElementOf<Real>{p.virial});
+    sums.max_overlap = std::max(
+        sums.max_overlap, exec::transform_max(exec::Host{}, n, 0.0, exec::ElementOf<Real>{p.overlap}));
+    if (p.separate) exec::count_scalar((virial ? 3 : 2) * sizeof(double));
+}
+
+/// Contacts over the full list (the back end's form) for the features chosen by dispatch_bools.
+struct FullListContacts {
+    const BackendParticles& p;
+    const force::ContactTable& table;
+    const GranularSettings& settings;
+    ForceSums& sums;
+    template <bool Sample, bool Damping, bool Friction, bool Table>
+    void operator()() const {
+        using Features = force::ContactFeatures<Sample, Damping, Friction, Table>;
+        const force::ContactForceFullList<Features> contacts{
+            p.position, p.velocity, p.diameter, p.species, p.force, p.list_offset, p.list_index,
+            table, settings.n_species, 0.5 * settings.range_factor, p.energy, p.virial, p.overlap};
+        exec::for_each(exec::Host{}, p.n_owned, contacts);
+        if constexpr (Sample) add_sampled(p, p.n_owned, true, sums);
+    }
+};
+
+/// A plane wall's contacts for the features chosen by dispatch_bools (both forms: the host's
+/// store seen as BackendParticles).
+struct WallContacts {
+    const BackendParticles& p;
     int axis, side;
     double position, range;
-    const GranularPair& p;
+    const GranularPair& pair;
     const Vec3& velocity;
-    bool sample;
     ForceSums& sums;
-    template <bool Damping, bool Friction>
+    template <bool Sample, bool Damping, bool Friction>
     void operator()() const {
-        Vec3 n{0, 0, 0};
-        n[axis] = side;
-        for (std::size_t i = 0; i < n_owned; ++i) {
-            const Real h = side * (s.position[i][axis] - position);
-            const Real rc = 0.5 * range * s.diameter[i];
-            if (h >= rc) continue;
-            s.force[i] += force::contact_force<Damping, Friction>(n, rc - h, s.velocity[i] - velocity, p);
-            if (sample) {
-                sums.potential += 0.5 * p.k_n * (rc - h) * (rc - h);
-                sums.max_overlap = std::max(sums.max_overlap, (rc - h) / s.diameter[i]);
-            }
-        }
-        if (sample) sums.max_overlap = std::max(sums.max_overlap, 0.0);
+        exec::for_each(exec::Host{}, p.n_owned,
+                       force::PlaneWallForce<Sample, Damping, Friction>{
+                           p.position, p.velocity, p.diameter, p.force, axis, Real(side), position,
+                           range, pair, velocity, p.energy, p.overlap});
+        if constexpr (Sample) add_sampled(p, p.n_owned, false, sums);
     }
 };
 
@@ -107,6 +126,8 @@ public:
             damping_ = damping_ || p.gamma_n != 0;
             friction_ = friction_ || (p.gamma_s != 0 && p.mu != 0);
         }
+        if (on_backend())
+            for (std::size_t k = 0; k < g.pairs.size(); ++k) table_.pair[k] = g.pairs[k];
     }
     std::string name() const override { return "granular-contacts"; }
     bool conservative() const override { return !damping_ && !friction_; }
@@ -121,10 +142,19 @@ public:
         force::dispatch_bools(ContactLoop{store, list, g_, sums}, sample, damping_ || all,
                               friction_ || all, g_.n_species > 1 || all);
     }
+    /// The laws travel by value with the loop: up to kContactTableSpecies species.
+    bool on_backend() const override { return g_.n_species <= force::kContactTableSpecies; }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
+                               ForceSums& sums) const override {
+        const bool all = g_.generic;
+        force::dispatch_bools(FullListContacts{p, table_, g_, sums}, sample, damping_ || all,
+                              friction_ || all, g_.n_species > 1 || all);
+    }
 
 private:
     GranularSettings g_;
     bool damping_ = false, friction_ = false;
+    force::ContactTable table_{};
 };
 
 class UniformField final : public ForceTerm {
@@ -169,15 +199,32 @@ public:
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && dot(velocity_, velocity_) == 0;
     }
     double cutoff() const override { return 0; }
-    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext&, bool sample,
+    bool on_backend() const override { return true; }
+    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
                     ForceSums& sums) const override {
-        const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
-        force::dispatch_bools(WallLoop{s, list.n_owned(), axis_, side_, position_, range_, p_,
-                                       velocity_, sample, sums},
-                              damping, friction);
+        BackendParticles p = host_view(s, *c.mass);
+        p.n_owned = list.n_owned();
+        std::vector<Real> energy, overlap;  // sampling steps only
+        if (sample) {
+            energy.resize(p.n_owned);
+            overlap.resize(p.n_owned);
+            p.energy = energy.data();
+            p.overlap = overlap.data();
+        }
+        add(p, sample, sums);
+    }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
+                               ForceSums& sums) const override {
+        add(p, sample, sums);
     }
 
 private:
+    void add(const BackendParticles& p, bool sample, ForceSums& sums) const {
+        const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
+        force::dispatch_bools(WallContacts{p, axis_, side_, position_, range_, p_, velocity_, sums},
+                              sample, damping, friction);
+    }
+
     int axis_;
     double position_;
     int side_;

@@ -112,11 +112,12 @@ TEST(BackendForces, FullListOnTheBackendMatchesTheHostsHalfList) {
 }
 
 TEST(BackendTraffic, WallsAndWallLayersStayOnTheBackend) {
-    // Thermal and specular walls (taylor-couette: cylinders and end plates), and wall-layer
-    // thermostats with gravity (rayleigh-benard) on the checking back end, one rank. The walls
-    // name a particle they cannot return by its id, so ids go over once after each list build
-    // (on the first step that needs them); otherwise a step moves no array.
-    for (const char* scene : {"taylor-couette", "rayleigh-benard"}) {
+    // Thermal and specular walls (taylor-couette: cylinders and end plates), wall-layer
+    // thermostats with gravity (rayleigh-benard), granular contacts with damping and friction on
+    // a plane floor (granular-bed: ghost velocities too) on the checking back end, one rank.
+    // The walls name a particle they cannot return by its id, so ids go over once after each
+    // list build (on the first step that needs them); otherwise a step moves no array.
+    for (const char* scene : {"taylor-couette", "rayleigh-benard", "granular-bed"}) {
         auto sim = make_scene(MPI_COMM_SELF, scene, {"backend=checking"}, "tiny");
         for (int k = 0; k < 10; ++k) sim->step(false);
         const StepTraffic t = count_traffic(*sim, 300);
