@@ -660,13 +660,23 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     ParticleStore& s = e.store;
     e.prepare();
     e.rebuild();
+    // Where particle `id` was in the saved state on this rank, or npos: a body's spheres are
+    // placed by the rank that owns the body, which need not be the rank their saved copies
+    // were dealt to.
+    constexpr std::size_t npos = ~std::size_t{0};
     auto saved = [&](std::int64_t id) {
         const auto it = std::lower_bound(by_id.begin(), by_id.end(), std::make_pair(id, std::size_t{0}));
-        return it->second;
+        return it != by_id.end() && it->first == id ? it->second : npos;
     };
     // Spheres of bodies were placed afresh by the build; free particles get their positions back.
-    for (std::size_t i = 0; i < s.n_owned(); ++i)
-        if (e.is_free(i)) s.position[i] = current[saved(s.id[i])];
+    for (std::size_t i = 0; i < s.n_owned(); ++i) {
+        if (!e.is_free(i)) continue;
+        const std::size_t k = saved(s.id[i]);
+        if (k == npos)
+            throw std::logic_error("restore: particle id " + std::to_string(s.id[i]) +
+                                   " is not in this rank's saved state");
+        s.position[i] = current[k];
+    }
     e.halo.gather_positions(s);
     if (e.ghost_fields & kVelocity) e.halo.gather_velocities(s);
     e.host_wrote(kPosition | kVelocity);
@@ -679,7 +689,13 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     // half-step velocities, which a saved state does not hold: the saved forces continue it
     // exactly (the sums for measure() come from the recomputation).
     if (saved_forces) {
-        for (std::size_t i = 0; i < s.n_owned(); ++i) s.force[i] = forces[saved(s.id[i])];
+        // A sphere whose saved copy is on another rank keeps the recomputed force (with
+        // friction, a continuation then differs from the uninterrupted run at round-off level
+        // and beyond, as restores with bodies may anyway).
+        for (std::size_t i = 0; i < s.n_owned(); ++i) {
+            const std::size_t k = saved(s.id[i]);
+            if (k != npos) s.force[i] = forces[k];
+        }
         if (e.bodies()) e.rigid.sum_forces(s);
         e.host_wrote(kForce);
     }
