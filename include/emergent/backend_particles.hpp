@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "emergent/execution.hpp"
 #include "emergent/particle_store.hpp"
 
 namespace emergent {
@@ -34,9 +35,9 @@ struct BackendParticles {
     Real* energy = nullptr;
     Real* virial = nullptr;
     Real* overlap = nullptr;
-    /// True when the arrays are not the host's: a result the host reads back (a sum, one
-    /// particle's id) is then a transfer, counted with exec::count_scalar.
-    bool separate = false;
+    /// Where loops over these arrays run: launch through it (exec::for_each(p.target, ...));
+    /// the host reads single values with exec::read_one(p.target, ...), never directly.
+    exec::Target target;
 };
 
 /// The store's own arrays (the host back end; tests). `mass` per species.

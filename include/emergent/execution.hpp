@@ -1,9 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The thin execution layer: runs a per-particle functor as a CPU loop (here) or a CUDA grid
-// (execution/cuda_launch.cuh), and does the reductions, scans and sorts around them (here the
-// standard library's way, on CUDA CUB's; execution/cuda_algorithms.cuh). Physics lives in the
+// (emergent/cuda_launch.cuh), and does the reductions, scans and sorts around them (here the
+// standard library's way, on CUDA CUB's; emergent/cuda_algorithms.cuh). Physics lives in the
 // functors, never in the launchers. Each primitive has the same meaning on both back ends;
 // what may differ is only the order of floating-point additions (stated per primitive).
+//
+// exec::Target picks the back end at run time (the run parameter `backend`). A source file
+// that launches through a Target is compiled as CUDA in a CUDA build, so that its loops can
+// run on the device; compiled as plain C++ (a build without CUDA, or a plugin built with a C++
+// compiler) a launch on the device is refused with a clear error.
 #pragma once
 
 #include <algorithm>
@@ -146,5 +151,92 @@ inline void sort_pairs(Host, std::uint32_t* keys, std::uint32_t* values, std::si
     std::copy(k.begin(), k.end(), keys);
     std::copy(v.begin(), v.end(), values);
 }
+
+
+/// Where the loops of a run go, chosen at run time: the host's loops on the store (host), on
+/// separate host memory (checking), or CUDA kernels on the device's memory (cuda).
+struct Target {
+    bool device = false;    ///< CUDA kernels; else host loops
+    bool separate = false;  ///< the arrays are not the host's: a result read back is a transfer
+    void* stream = nullptr; ///< the CUDA stream (cudaStream_t) of a device target
+};
+
+/// Throws: a loop compiled without CUDA was asked to run on the device.
+[[noreturn]] void refuse_device_loop(const char* what);
+/// Copies `bytes` from the target's memory to the host (a plain copy on the host back ends);
+/// counted as a scalar transfer where the target's memory is separate.
+void read_from(const Target& target, void* to, const void* from, std::size_t bytes);
+
+/// One value of an array in the target's memory, read by the host (a guard's offender).
+template <class T>
+T read_one(const Target& target, const T* at) {
+    T value;
+    read_from(target, &value, at, sizeof(T));
+    return value;
+}
+
+}  // namespace emergent::exec
+
+#if defined(__CUDACC__)
+#include "emergent/cuda_algorithms.cuh"
+#endif
+
+namespace emergent::exec {
+
+// The run-time dispatch. Its mangled names differ between CUDA and plain C++ compilation
+// (inline namespaces), so the two forms never stand in for each other at link time.
+#if defined(__CUDACC__)
+inline namespace with_cuda {
+inline Cuda on_device(const Target& target) { return Cuda{static_cast<cudaStream_t>(target.stream)}; }
+#define EMERGENT_ON_DEVICE(name, ...) \
+    if (target.device) return name(on_device(target), __VA_ARGS__)
+#else
+inline namespace host_only {
+#define EMERGENT_ON_DEVICE(name, ...) \
+    if (target.device) refuse_device_loop(#name)
+#endif
+
+/// The host back ends count a reduction's result as the device's copy back is counted, so the
+/// checking back end reports the traffic a device run has.
+inline void count_result(const Target& target, std::size_t bytes) {
+    if (target.separate && !target.device) count_scalar(bytes);
+}
+
+template <class Functor>
+void for_each(const Target& target, std::size_t n, const Functor& f) {
+    EMERGENT_ON_DEVICE(for_each, n, f);
+    for_each(Host{}, n, f);
+}
+
+template <class T, class F>
+T transform_sum(const Target& target, std::size_t n, const F& f) {
+    EMERGENT_ON_DEVICE(transform_sum<T>, n, f);
+    count_result(target, sizeof(T));
+    return transform_sum<T>(Host{}, n, f);
+}
+
+template <class T, class Pred, class F>
+T transform_sum_if(const Target& target, std::size_t n, T init, const Pred& pred, const F& f) {
+    EMERGENT_ON_DEVICE(transform_sum_if, n, init, pred, f);
+    count_result(target, sizeof(T));
+    return transform_sum_if(Host{}, n, init, pred, f);
+}
+
+template <class T, class F>
+T transform_max(const Target& target, std::size_t n, T init, const F& f) {
+    EMERGENT_ON_DEVICE(transform_max, n, init, f);
+    count_result(target, sizeof(T));
+    return transform_max(Host{}, n, init, f);
+}
+
+template <class Pred>
+std::size_t first_index(const Target& target, std::size_t n, const Pred& pred) {
+    EMERGENT_ON_DEVICE(first_index, n, pred);
+    count_result(target, sizeof(std::size_t));
+    return first_index(Host{}, n, pred);
+}
+
+#undef EMERGENT_ON_DEVICE
+}  // inline namespace
 
 }  // namespace emergent::exec

@@ -15,7 +15,10 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-10"  // 10: BackendParticles::overlap (9:
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-11"  // 11: exec::Target, BackendParticles::target
+                                                 //    for ::separate, cuda_launch.cuh and
+                                                 //    cuda_algorithms.cuh public (10:
+                                                 //    BackendParticles::overlap (9:
                                                  //    BackendParticles, ForceTerm::on_backend
                                                  //    and add_forces_on_backend, ListLayout,
                                                  //    exec::ElementOf, BackendParticles for
@@ -23,7 +26,7 @@
                                                  //    RunSettings::backend, Simulation::backend;
                                                  //    4-7: the execution layer; 3:
                                                  //    Problem::expected_particles, ParamSpec::restart,
-                                                 //    ForceTerm::particle_fields))
+                                                 //    ForceTerm::particle_fields)))
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \

@@ -90,7 +90,8 @@ RunSettings run_settings(const Config& cfg) {
         cfg.text("integrator") == "omelyan" ? Integrator::Omelyan : Integrator::VelocityVerlet;
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
     const std::string& backend = cfg.text("backend");
-    // auto stays on the host until the step runs on CUDA devices (Simulation refuses cuda).
+    // auto stays on the host until the CUDA back end has passed its device check (benchmarks/
+    // gpu_check.sh on a lent GPU); cuda is chosen explicitly until then.
     settings.backend = backend == "cuda"       ? Backend::Cuda
                        : backend == "checking" ? Backend::Checking
                                                : Backend::Host;

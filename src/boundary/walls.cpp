@@ -38,17 +38,15 @@ void bounce(const WallGeometry& wall, const BackendParticles& p, const BoundaryC
     tally.energy = exchange.energy;
     boundary::with_crossing_test(wall.shape, [&](auto beyond) {
         const boundary::IsBeyond<decltype(beyond)> selected{beyond, p.position};
-        tally = exec::transform_sum_if(exec::Host{}, p.n_owned, tally, selected, one);
+        tally = exec::transform_sum_if(p.target, p.n_owned, tally, selected, one);
     });
-    if (p.separate) exec::count_scalar(sizeof(tally));
     exchange.hits = tally.hits;
     exchange.momentum = tally.momentum;
     exchange.angular_momentum = tally.angular_momentum;
     exchange.energy = tally.energy;
     if (fault.empty() && tally.first_fault < p.n_owned) {
-        if (p.separate) exec::count_scalar(sizeof(std::int64_t));  // the offender's id
         std::ostringstream msg;
-        msg << "particle id " << p.id[tally.first_fault] << " could not be returned inside "
+        msg << "particle id " << exec::read_one(p.target, p.id + tally.first_fault) << " could not be returned inside "
             << name << " at step " << context.step << " (it crossed the region in one step?)";
         fault = msg.str();
     }

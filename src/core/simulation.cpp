@@ -69,6 +69,8 @@ struct Simulation::Engine {
     /// The particle arrays in the back end's memory; null on the host back end, whose loops
     /// work on the store itself.
     std::unique_ptr<exec::ParticleMirror> mirror;
+    /// Where the loops run (exec::Target): the host's loops, or CUDA kernels.
+    exec::Target target;
     /// Full neighbour list, force terms in their back-end form (ListLayout).
     bool full_list = false;
     const std::uint32_t *list_offset = nullptr, *list_index = nullptr;  ///< where the back end reads it
@@ -100,10 +102,6 @@ struct Simulation::Engine {
     /// Bringing the host's copy up to date is no change of the simulation's state, so const
     /// members may sync.
     ParticleStore& host_store() const { return const_cast<ParticleStore&>(store); }
-    /// A reduction's result the host reads back from the back end (counted as a device would).
-    void read_back(std::size_t bytes) const {
-        if (mirror) exec::count_scalar(bytes);
-    }
     /// Per-species masses where the back end's loops read them.
     const double* masses() const { return mirror ? mirror->table(0, mass) : mass.data(); }
     const double* inverse_masses() const {
@@ -165,7 +163,7 @@ struct Simulation::Engine {
         p.force = data(kForce, store.force);
         p.species = data(kSpecies, store.species);
         p.id = data(kId, store.id);
-        p.separate = mirror != nullptr;
+        p.target = target;
         p.diameter = store.has_diameters() ? data(kDiameter, store.diameter) : nullptr;
         p.mass = masses();
         p.n_owned = store.n_owned();
@@ -260,7 +258,7 @@ struct Simulation::Engine {
         if (full_list) {
             backend_reads(particle_fields | ghost_fields | kSpecies);
             BackendParticles particles = backend_particles();
-            exec::for_each(exec::Host{}, particles.size, integrate::ZeroVector{particles.force});
+            exec::for_each(target, particles.size, integrate::ZeroVector{particles.force});
             sums = ForceSums{};
             const ForceContext context{&mass, box, at};
             for (const auto& term : forces) term->add_forces_on_backend(particles, context, sample, sums);
@@ -286,7 +284,7 @@ struct Simulation::Engine {
         PhaseTimer timer(times.integrate);
         moved_since_build = true;
         backend_reads(kPosition | kVelocity | kForce | kSpecies);
-        exec::for_each(exec::Host{}, store.n_owned(),
+        exec::for_each(target, store.n_owned(),
                        integrate::KickDrift{data(kPosition, store.position),
                                             data(kVelocity, store.velocity), data(kForce, store.force),
                                             data(kSpecies, store.species), inverse_masses(),
@@ -309,7 +307,7 @@ struct Simulation::Engine {
     void kick(double kick) {
         PhaseTimer timer(times.integrate);
         backend_reads(kVelocity | kForce | kSpecies);
-        exec::for_each(exec::Host{}, store.n_owned(),
+        exec::for_each(target, store.n_owned(),
                        integrate::Kick{data(kVelocity, store.velocity), data(kForce, store.force),
                                        data(kSpecies, store.species), inverse_masses(), kick});
         backend_wrote(kVelocity);
@@ -328,17 +326,16 @@ struct Simulation::Engine {
             PhaseTimer timer(times.communicate);
             backend_reads(kPosition);
             Vec3* x = mirror->array<Vec3>(kPosition);
-            const double local = exec::transform_max(exec::Host{}, store.n_owned(), 0.0,
+            const double local = exec::transform_max(target, store.n_owned(), 0.0,
                                                      SquaredDisplacement{x, reference_on_backend});
-            read_back(sizeof(double));  // the maximum
             needed = list.rebuild_due(local, comm);
             if (!needed) {
-                backend_halo.gather(halo, *mirror, x, true, kHaloPack);
+                backend_halo.gather(target, halo, *mirror, x, true, kHaloPack);
                 backend_wrote(kPosition);
                 // Contact forces with damping or friction need their partners' velocities.
                 if (ghost_fields & kVelocity) {
                     backend_reads(kVelocity);
-                    backend_halo.gather(halo, *mirror, mirror->array<Vec3>(kVelocity), false, kHaloPack);
+                    backend_halo.gather(target, halo, *mirror, mirror->array<Vec3>(kVelocity), false, kHaloPack);
                     backend_wrote(kVelocity);
                 }
             }
@@ -362,8 +359,7 @@ struct Simulation::Engine {
         const integrate::FreeKineticEnergy energy{
             data(kVelocity, store.velocity), data(kSpecies, store.species), masses(),
             store.has_rigid_fields() ? data(kBody, store.body) : nullptr};
-        const double sum = exec::transform_sum<double>(exec::Host{}, store.n_owned(), energy);
-        read_back(sizeof(double));
+        const double sum = exec::transform_sum<double>(target, store.n_owned(), energy);
         return sum + rigid.kinetic();
     }
 
@@ -389,7 +385,7 @@ struct Simulation::Engine {
         PhaseTimer timer(times.integrate);
         const double kinetic = decomp::sum(comm, local_kinetic());
         const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
-        exec::for_each(exec::Host{}, store.n_owned(),
+        exec::for_each(target, store.n_owned(),
                        integrate::ScaleVelocity{data(kVelocity, store.velocity), factor});
         backend_wrote(kVelocity);
     }
@@ -417,16 +413,18 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
         break;
     case Backend::Checking:
         engine_->mirror = std::make_unique<exec::ParticleMirror>(exec::separate_host_memory(), true);
+        engine_->target.separate = true;
         break;
     case Backend::Cuda:
-        // The execution layer, the mirror and the device memory are in place; the step's
-        // kernels are not launched on a device yet (the one-engine work), so a device run is
-        // refused rather than run on the host behind the user's back.
         if (!gpu::device_present())
             throw InputError("backend=cuda: no CUDA device is visible to this process "
                              "(or the build has no CUDA); use backend=host");
-        throw InputError("backend=cuda: the time step does not run on a CUDA device yet; use "
-                         "backend=host");
+        // One device per rank (node-local rank modulo the devices); the particle data live
+        // there for the whole run, on the default stream.
+        engine_->mirror = std::make_unique<exec::ParticleMirror>(exec::cuda_device_memory(), false);
+        engine_->target.device = true;
+        engine_->target.separate = true;
+        break;
     }
 }
 
@@ -567,8 +565,7 @@ void Simulation::check_guards(const GuardLimits& limits) const {
     e.backend_reads(kPosition | kVelocity | kForce);
     const integrate::UnfitState unfit{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
                                       e.data(kForce, s.force), f2max};
-    const std::size_t i = problem.empty() ? exec::first_index(exec::Host{}, s.n_owned(), unfit) : s.n_owned();
-    e.read_back(sizeof(std::size_t));
+    const std::size_t i = problem.empty() ? exec::first_index(e.target, s.n_owned(), unfit) : s.n_owned();
     if (i < s.n_owned()) {
         e.host_reads(kPosition | kVelocity | kForce | kId);  // to name the offender
         const Vec3 &x = s.position[i], &v = s.velocity[i], &f = s.force[i];
@@ -737,11 +734,10 @@ ThermoSample Simulation::measure() const {
     const Vec3 len = e.box.length();
     e.backend_reads(kPosition | kVelocity | kImage | kSpecies | kBody);
     const integrate::Momenta free = exec::transform_sum<integrate::Momenta>(
-        exec::Host{}, s.n_owned(),
+        e.target, s.n_owned(),
         integrate::FreeMomenta{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
                                e.data(kImage, s.image), e.data(kSpecies, s.species), e.masses(),
                                s.has_rigid_fields() ? e.data(kBody, s.body) : nullptr, len});
-    e.read_back(sizeof(free));
     const Vec3 pb = e.rigid.momentum(), lb = e.rigid.angular_momentum(len);
     double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
     for (int d = 0; d < 3; ++d) v[3 + d] = free.linear[d] + pb[d], v[6 + d] = free.angular[d] + lb[d];

@@ -20,8 +20,9 @@ void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror
         static_cast<const int*>(mirror.upload(upload_slot, index_.data(), index_.size() * sizeof(int)));
 }
 
-void BackendHalo::gather(const decomp::HaloExchange& halo, ParticleMirror& mirror, Vec3* x,
-                         bool is_position, std::size_t scratch_slot) {
+void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
+                         ParticleMirror& mirror, Vec3* x, bool is_position,
+                         std::size_t scratch_slot) {
     for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
         const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
         const std::size_t n = first_[k + 1] - first_[k];
@@ -30,13 +31,13 @@ void BackendHalo::gather(const decomp::HaloExchange& halo, ParticleMirror& mirro
         if (plan.to_self) {
             // Sources are owned particles and earlier swaps' ghosts, all before import_first:
             // the copies can land in place.
-            exec::for_each(exec::Host{}, n,
+            exec::for_each(target, n,
                            decomp::GhostImage{x, index, x + plan.import_first, halo.wedge(),
                                               plan.turns, shift});
             continue;
         }
         Vec3* packed = static_cast<Vec3*>(mirror.scratch(scratch_slot, n * sizeof(Vec3)));
-        exec::for_each(exec::Host{}, n,
+        exec::for_each(target, n,
                        decomp::GhostImage{x, index, packed, halo.wedge(), plan.turns, shift});
         send_.resize(n);
         receive_.resize(plan.import_count);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "decomposition/halo_exchange.hpp"
+#include "emergent/execution.hpp"
 #include "execution/particle_mirror.hpp"
 
 namespace emergent::exec {
@@ -20,8 +21,8 @@ public:
     /// Ghost values of `field` (the back end's array) from their owners, along the plan:
     /// positions (shifted across periodic boundaries) or velocities (never shifted); both
     /// rotated across wedge faces.
-    void gather(const decomp::HaloExchange& halo, ParticleMirror& mirror, Vec3* field,
-                bool is_position, std::size_t scratch_slot);
+    void gather(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
+                Vec3* field, bool is_position, std::size_t scratch_slot);
 
 private:
     std::vector<int> index_;          ///< export indices of all swaps, swap after swap

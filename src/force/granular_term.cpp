@@ -76,11 +76,10 @@ struct ContactLoop {
 
 /// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.
 void add_sampled(const BackendParticles& p, std::size_t n, bool virial, ForceSums& sums) {
-    sums.potential += exec::transform_sum<double>(exec::Host{}, n, exec::ElementOf<Real>{p.energy});
-    if (virial) sums.virial += exec::transform_sum<double>(exec::Host{}, n, exec::ElementOf<Real>{p.virial});
+    sums.potential += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.energy});
+    if (virial) sums.virial += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.virial});
     sums.max_overlap = std::max(
-        sums.max_overlap, exec::transform_max(exec::Host{}, n, 0.0, exec::ElementOf<Real>{p.overlap}));
-    if (p.separate) exec::count_scalar((virial ? 3 : 2) * sizeof(double));
+        sums.max_overlap, exec::transform_max(p.target, n, 0.0, exec::ElementOf<Real>{p.overlap}));
 }
 
 /// Contacts over the full list (the back end's form) for the features chosen by dispatch_bools.
@@ -95,7 +94,7 @@ struct FullListContacts {
         const force::ContactForceFullList<Features> contacts{
             p.position, p.velocity, p.diameter, p.species, p.force, p.list_offset, p.list_index,
             table, settings.n_species, 0.5 * settings.range_factor, p.energy, p.virial, p.overlap};
-        exec::for_each(exec::Host{}, p.n_owned, contacts);
+        exec::for_each(p.target, p.n_owned, contacts);
         if constexpr (Sample) add_sampled(p, p.n_owned, true, sums);
     }
 };
@@ -111,7 +110,7 @@ struct WallContacts {
     ForceSums& sums;
     template <bool Sample, bool Damping, bool Friction>
     void operator()() const {
-        exec::for_each(exec::Host{}, p.n_owned,
+        exec::for_each(p.target, p.n_owned,
                        force::PlaneWallForce<Sample, Damping, Friction>{
                            p.position, p.velocity, p.diameter, p.force, axis, Real(side), position,
                            range, pair, velocity, p.energy, p.overlap});
@@ -165,24 +164,23 @@ public:
     bool on_backend() const override { return true; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
                     bool sample, ForceSums& sums) const override {
-        add(s.position.data(), s.force.data(), s.species.data(), c.mass->data(), list.n_owned(),
-            sample, sums);
+        add(exec::Target{}, s.position.data(), s.force.data(), s.species.data(), c.mass->data(),
+            list.n_owned(), sample, sums);
     }
     void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
                                ForceSums& sums) const override {
-        add(p.position, p.force, p.species, p.mass, p.n_owned, sample, sums);
-        if (sample && p.separate) exec::count_scalar(sizeof(double));
+        add(p.target, p.position, p.force, p.species, p.mass, p.n_owned, sample, sums);
     }
 
 private:
-    void add(const Vec3* x, Vec3* f, const int* species, const double* mass, std::size_t n,
-             bool sample, ForceSums& sums) const {
+    void add(const exec::Target& target, const Vec3* x, Vec3* f, const int* species,
+             const double* mass, std::size_t n, bool sample, ForceSums& sums) const {
         // The sampling in its own pass: the force pass is then a plain streaming add (it runs
         // every step for every particle).
-        exec::for_each(exec::Host{}, n, force::AddUniformField{f, species, mass, g_});
+        exec::for_each(target, n, force::AddUniformField{f, species, mass, g_});
         if (!sample) return;
         sums.potential +=
-            exec::transform_sum<double>(exec::Host{}, n, force::UniformFieldEnergy{x, species, mass, g_});
+            exec::transform_sum<double>(target, n, force::UniformFieldEnergy{x, species, mass, g_});
     }
 
     Vec3 g_;

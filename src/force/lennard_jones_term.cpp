@@ -40,20 +40,19 @@ public:
                                ForceSums& sums) const override {
         const force::CompressedNeighbours list{p.list_offset, p.list_index};
         if (!sample) {
-            exec::for_each(exec::Host{}, p.n_owned,
+            exec::for_each(p.target, p.n_owned,
                            force::PairForceFullList<force::LennardJones>{
                                p.position, p.force, list, eval_, {}, nullptr, nullptr, true});
             return;
         }
-        exec::for_each(exec::Host{}, p.n_owned,
+        exec::for_each(p.target, p.n_owned,
                        force::PairForceFullList<force::LennardJones, force::CompressedNeighbours,
                                                 force::DirectSeparation, true>{
                            p.position, p.force, list, eval_, {}, p.energy, p.virial, true});
         // Each particle holds half of each of its pairs: an owned-ghost pair's other half is
         // counted by the rank that owns the ghost, as with the half list.
-        sums.potential += exec::transform_sum<double>(exec::Host{}, p.n_owned, exec::ElementOf<Real>{p.energy});
-        sums.virial += exec::transform_sum<double>(exec::Host{}, p.n_owned, exec::ElementOf<Real>{p.virial});
-        if (p.separate) exec::count_scalar(2 * sizeof(double));
+        sums.potential += exec::transform_sum<double>(p.target, p.n_owned, exec::ElementOf<Real>{p.energy});
+        sums.virial += exec::transform_sum<double>(p.target, p.n_owned, exec::ElementOf<Real>{p.virial});
     }
 
 private:

@@ -6,7 +6,7 @@
 
 #include <cooperative_groups.h>
 
-#include "execution/cuda_launch.cuh"
+#include "emergent/cuda_launch.cuh"
 #include "gpu/device_cells.hpp"
 
 namespace emergent::gpu {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The CUDA device's memory for the particle mirror.
-#include "execution/cuda_launch.cuh"
+#include "emergent/cuda_launch.cuh"
 #include "execution/array_memory.hpp"
 #include "emergent/gpu.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstddef>
 #include <utility>
 
-#include "execution/cuda_launch.cuh"
+#include "emergent/cuda_launch.cuh"
 
 namespace emergent::gpu {
 

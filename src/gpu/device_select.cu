@@ -9,7 +9,7 @@
 #include <string>
 
 #include "emergent/gpu.hpp"
-#include "execution/cuda_launch.cuh"
+#include "emergent/cuda_launch.cuh"
 
 namespace emergent::gpu {
 

@@ -15,7 +15,7 @@
 #include "emergent/gpu.hpp"
 #include "emergent/error.hpp"
 #include "emergent/execution.hpp"
-#include "execution/cuda_launch.cuh"
+#include "emergent/cuda_launch.cuh"
 #include "force/lennard_jones.hpp"
 #include "force/pair_full_list.hpp"
 #include "gpu/build_list_split.cuh"

@@ -21,8 +21,7 @@ void WallLayerThermostat::apply(const BackendParticles& p, MPI_Comm comm, long l
     if (step % interval_ != 0) return;
     const thermostat::InLayer layer{axis_, lo_, hi_};
     const thermostat::LayerSums local = exec::transform_sum<thermostat::LayerSums>(
-        exec::Host{}, p.n_owned, thermostat::LayerMember{p.position, p.velocity, p.species, p.mass, layer});
-    if (p.separate) exec::count_scalar(sizeof(local));
+        p.target, p.n_owned, thermostat::LayerMember{p.position, p.velocity, p.species, p.mass, layer});
     // Mass, momentum, 2 x kinetic energy and number of the layer's particles.
     double all[6] = {local.mass, local.momentum.x, local.momentum.y, local.momentum.z,
                      local.twice_kinetic, local.count};
@@ -36,7 +35,7 @@ void WallLayerThermostat::apply(const BackendParticles& p, MPI_Comm comm, long l
     const double dof = 3 * n - 2;
     if (!(twice_kinetic > 0)) return;
     const double factor = std::sqrt(temperature_ * dof / twice_kinetic);
-    exec::for_each(exec::Host{}, p.n_owned,
+    exec::for_each(p.target, p.n_owned,
                    thermostat::RescaleLayer{p.position, p.velocity, layer, factor, drift});
     energy_ += 0.5 * (factor * factor * twice_kinetic - all[4]);
 }

@@ -12,7 +12,7 @@
 #include "boundary/bounce.hpp"
 #include "emergent/execution.hpp"
 #include "emergent/gpu.hpp"
-#include "execution/cuda_algorithms.cuh"
+#include "emergent/cuda_algorithms.cuh"
 #include "gpu/device_buffer.cuh"
 #include "support/device_arrays.cuh"
 #include "integrate/particle_sums.hpp"

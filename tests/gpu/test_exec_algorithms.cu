@@ -9,7 +9,7 @@
 
 #include "emergent/execution.hpp"
 #include "emergent/gpu.hpp"
-#include "execution/cuda_algorithms.cuh"
+#include "emergent/cuda_algorithms.cuh"
 #include "gpu/device_buffer.cuh"
 #include "support/device_arrays.cuh"
 #include "support/execution_cases.hpp"

@@ -2,7 +2,7 @@
 # usage: cmake -DROOT=<source dir> -P interface_digest.cmake
 # The digest covers every public header with comments and white-space runs removed, so that
 # documentation edits do not count; tests/plugin/interface.sha256 records "<ABI tag> <digest>".
-file(GLOB headers ${ROOT}/include/emergent/*.hpp)
+file(GLOB headers ${ROOT}/include/emergent/*.hpp ${ROOT}/include/emergent/*.cuh)
 list(SORT headers)
 set(all "")
 foreach(h IN LISTS headers)

@@ -7,6 +7,9 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "emergent/execution.hpp"
 #include "support/execution_cases.hpp"
@@ -106,4 +109,31 @@ TEST(Execution, SortPairsRefusesKeysWiderThanSaid) {
     // 300 needs 9 bits: on CUDA an 8-bit sort would ignore its top bit, so the host refuses it.
     EXPECT_THROW(exec::sort_pairs(exec::Host{}, keys.data(), values.data(), 3, 8), std::invalid_argument);
     EXPECT_NO_THROW(exec::sort_pairs(exec::Host{}, keys.data(), values.data(), 3, 9));
+}
+
+// The run-time target: its host forms are the host loops (a checking target counts each
+// result read back, as a device would), and a loop compiled as plain C++ refuses the device
+// with a message instead of running on the host behind the user's back.
+TEST(Execution, TargetRunsTheHostLoopsAndCountsWhatADeviceReadsBack) {
+    std::vector<double> a{1.5, -2.0, 4.25};
+    const exec::ElementOf<double> element{a.data()};
+    const exec::Target host, checking{false, true, nullptr};
+    const exec::Transfers before = exec::transfers();
+    EXPECT_EQ(exec::transform_sum<double>(host, a.size(), element), 3.75);
+    EXPECT_EQ(exec::transfers().scalars, before.scalars);
+    EXPECT_EQ(exec::transform_max(checking, a.size(), 0.0, element), 4.25);
+    EXPECT_EQ(exec::read_one(checking, a.data() + 1), -2.0);
+    EXPECT_EQ(exec::transfers().scalars, before.scalars + 2);
+    EXPECT_EQ(exec::transfers().arrays, before.arrays);
+}
+
+TEST(Execution, TargetRefusesTheDeviceWhereCompiledWithoutCuda) {
+    std::vector<double> a(4, 1.0);
+    const exec::Target device{true, true, nullptr};
+    try {
+        exec::for_each(device, a.size(), exec::ElementOf<double>{a.data()});
+        FAIL() << "a loop compiled without CUDA ran with a device target";
+    } catch (const std::runtime_error& e) {
+        EXPECT_NE(std::string(e.what()).find("compiled without CUDA"), std::string::npos) << e.what();
+    }
 }

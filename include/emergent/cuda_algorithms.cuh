@@ -15,7 +15,7 @@
 #include <stdexcept>
 
 #include "emergent/execution.hpp"
-#include "execution/cuda_launch.cuh"
+#include "emergent/cuda_launch.cuh"
 
 namespace emergent::exec {
 
