@@ -55,10 +55,11 @@ Schema run_schema() {
                 "~10x smaller leading error; see benchmarks/RESULTS.md for when it pays)")
         .choice("backend", "auto", {"auto", "host", "checking", "cuda"},
                 "where the particle data live and the per-particle loops run: host (CPU loops), "
-                "cuda (one CUDA device per rank; the step does not run there yet and is refused), "
-                "checking (the host back end with its data kept apart from the host copy, which "
-                "is poisoned between syncs: bitwise host's results, for tests), auto (host for "
-                "now; cuda once the step runs there)")
+                "cuda (the step's loops as kernels on one CUDA device per rank, chosen by the "
+                "rank's index on its node; refused where there is none; not yet checked on a "
+                "device: benchmarks/gpu_check.sh), checking (the host back end with its data kept "
+                "apart from the host copy, which is poisoned between syncs: bitwise host's "
+                "results, for tests), auto (host until the device check has passed)")
         .choice("neighbour_list", "auto", {"auto", "half", "full"},
                 "neighbour-list layout: half (each pair once, the host's fastest), full (each pair "
                 "under both members, the device's layout; every force term must have a back-end "
