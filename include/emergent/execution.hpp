@@ -167,6 +167,9 @@ struct Target {
 /// counted as a scalar transfer where the target's memory is separate.
 void read_from(const Target& target, void* to, const void* from, std::size_t bytes);
 
+/// Waits until the target's queued loops have finished (host targets: nothing to wait for).
+void synchronize(const Target& target);
+
 /// One value of an array in the target's memory, read by the host (a guard's offender).
 template <class T>
 T read_one(const Target& target, const T* at) {

@@ -16,6 +16,10 @@ public:
     virtual void release(void* p) noexcept = 0;
     virtual void to_backend(void* to, const void* from, std::size_t bytes) = 0;
     virtual void to_host(void* to, const void* from, std::size_t bytes) = 0;
+    /// Host memory the back end copies to and from fastest, for staging MPI messages: page-
+    /// locked on a CUDA device (its copies then run at full bus speed), plain elsewhere.
+    virtual void* allocate_staging(std::size_t bytes) = 0;
+    virtual void release_staging(void* p) noexcept = 0;
     /// A copy inside the back end's memory (not a transfer).
     virtual void within(void* to, const void* from, std::size_t bytes) = 0;
     /// What the memory is, for messages ("host (checking)", "CUDA device").

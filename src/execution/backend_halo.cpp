@@ -2,10 +2,25 @@
 // Ghost positions refreshed on the back end.
 #include "execution/backend_halo.hpp"
 
+#include <mpi.h>
+#if __has_include(<mpi-ext.h>)
+#include <mpi-ext.h>  // Open MPI's extensions: the CUDA support query
+#endif
+
 #include "decomposition/ghost_image.hpp"
 #include "emergent/execution.hpp"
 
 namespace emergent::exec {
+
+bool mpi_reads_device_memory() {
+    // Asked at run time: the Open MPI a run loads may have CUDA support although the one
+    // compiled against had not (Debian's has not).
+#if defined(OMPI_HAVE_MPI_EXT_CUDA) && OMPI_HAVE_MPI_EXT_CUDA
+    return MPIX_Query_cuda_support() == 1;
+#else
+    return false;
+#endif
+}
 
 void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror,
                         std::size_t upload_slot) {
@@ -18,6 +33,7 @@ void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror
     }
     index_on_backend_ =
         static_cast<const int*>(mirror.upload(upload_slot, index_.data(), index_.size() * sizeof(int)));
+    if (!asked_) direct_ = mpi_reads_device_memory(), asked_ = true;
 }
 
 void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
@@ -39,15 +55,21 @@ void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
         Vec3* packed = static_cast<Vec3*>(mirror.scratch(scratch_slot, n * sizeof(Vec3)));
         exec::for_each(target, n,
                        decomp::GhostImage{x, index, packed, halo.wedge(), plan.turns, shift});
-        send_.resize(n);
-        receive_.resize(plan.import_count);
+        const std::size_t send_bytes = n * sizeof(Vec3), receive_bytes = plan.import_count * sizeof(Vec3);
+        if (target.device && direct_) {
+            // CUDA-aware MPI reads and writes device memory: no staging; the packing kernel
+            // must have finished first.
+            synchronize(target);
+            halo.exchange_bytes(k, packed, send_bytes, x + plan.import_first, receive_bytes);
+            continue;
+        }
+        void* send = mirror.staging(0, send_bytes);
+        void* receive = mirror.staging(1, receive_bytes);
         // Every rank takes part in every swap (its partner waits for it), but a face without
         // a neighbour (a wall) moves nothing: no copies then.
-        if (n > 0) mirror.copy_to_host(send_.data(), packed, n * sizeof(Vec3));
-        halo.exchange_bytes(k, send_.data(), n * sizeof(Vec3), receive_.data(),
-                            plan.import_count * sizeof(Vec3));
-        if (plan.import_count > 0)
-            mirror.copy_to_backend(x + plan.import_first, receive_.data(), plan.import_count * sizeof(Vec3));
+        if (n > 0) mirror.copy_to_host(send, packed, send_bytes);
+        halo.exchange_bytes(k, send, send_bytes, receive, receive_bytes);
+        if (plan.import_count > 0) mirror.copy_to_backend(x + plan.import_first, receive, receive_bytes);
     }
 }
 

@@ -2,7 +2,8 @@
 // Ghost positions refreshed where the particles live: the halo's plan (host code, made at each
 // list build) is carried out on the back end's arrays. Copies to this rank's own ghosts
 // (periodic and wedge images) never leave the back end; copies for other ranks are packed
-// there, staged through host memory for MPI and unpacked there (each crossing counted).
+// there, staged through page-locked host buffers for MPI and unpacked there (each crossing
+// counted), or handed to MPI in device memory where MPI is CUDA-aware.
 #pragma once
 
 #include <cstddef>
@@ -13,6 +14,10 @@
 #include "execution/particle_mirror.hpp"
 
 namespace emergent::exec {
+
+/// True when this process's MPI moves CUDA device memory itself (Open MPI with CUDA support,
+/// asked at run time); else messages are staged through host memory.
+bool mpi_reads_device_memory();
 
 class BackendHalo {
 public:
@@ -28,7 +33,7 @@ private:
     std::vector<int> index_;          ///< export indices of all swaps, swap after swap
     std::vector<std::size_t> first_;  ///< where swap k's begin in index_
     const int* index_on_backend_ = nullptr;
-    std::vector<Vec3> send_, receive_;  ///< host staging for other ranks
+    bool direct_ = false, asked_ = false;  ///< MPI reads device memory (asked once)
 };
 
 }  // namespace emergent::exec

@@ -23,6 +23,8 @@ public:
         return p;
     }
     void release(void* p) noexcept override { std::free(p); }
+    void* allocate_staging(std::size_t bytes) override { return allocate(bytes); }
+    void release_staging(void* p) noexcept override { release(p); }
     void to_backend(void* to, const void* from, std::size_t bytes) override { std::memcpy(to, from, bytes); }
     void to_host(void* to, const void* from, std::size_t bytes) override { std::memcpy(to, from, bytes); }
     void within(void* to, const void* from, std::size_t bytes) override { std::memcpy(to, from, bytes); }
@@ -45,6 +47,7 @@ ParticleMirror::~ParticleMirror() {
     for (auto& a : arrays_) memory_->release(a.data);
     for (auto* list : {&tables_, &uploads_, &scratch_})
         for (auto& b : *list) memory_->release(b.data);
+    for (auto& b : staging_) memory_->release_staging(b.data);
 }
 
 ParticleMirror::Buffer& ParticleMirror::buffer(std::vector<Buffer>& list, std::size_t slot,
@@ -82,6 +85,19 @@ const void* ParticleMirror::upload(std::size_t slot, const void* data, std::size
 
 void* ParticleMirror::scratch(std::size_t slot, std::size_t bytes) {
     return buffer(scratch_, slot, bytes).data;
+}
+
+void* ParticleMirror::staging(std::size_t slot, std::size_t bytes) {
+    if (slot >= staging_.size()) staging_.resize(slot + 1);
+    Buffer& b = staging_[slot];
+    if (bytes > b.capacity || !b.data) {
+        const std::size_t capacity = std::max<std::size_t>(bytes + bytes / 32, 8);
+        void* grown = memory_->allocate_staging(capacity);
+        memory_->release_staging(b.data);
+        b.data = grown;
+        b.capacity = capacity;
+    }
+    return b.data;
 }
 
 void ParticleMirror::copy_to_host(void* to, const void* from, std::size_t bytes) {

@@ -55,6 +55,9 @@ public:
     /// Buffer `slot` of at least `bytes` on the back end, contents undefined: scratch for
     /// kernels.
     void* scratch(std::size_t slot, std::size_t bytes);
+    /// Host buffer `slot` of at least `bytes` for staging MPI messages (ArrayMemory::
+    /// allocate_staging: page-locked for a CUDA device), kept and grown; contents undefined.
+    void* staging(std::size_t slot, std::size_t bytes);
     /// Copies between back-end and host memory for staging (MPI), each counted as an array.
     void copy_to_host(void* to, const void* from, std::size_t bytes);
     void copy_to_backend(void* to, const void* from, std::size_t bytes);
@@ -88,7 +91,7 @@ private:
     std::unique_ptr<ArrayMemory> memory_;
     bool poison_;
     std::vector<Array> arrays_;
-    std::vector<Buffer> tables_, uploads_, scratch_;
+    std::vector<Buffer> tables_, uploads_, scratch_, staging_;
     std::size_t size_ = 0;
     unsigned host_stale_ = 0, backend_stale_ = kAllFields;
 };

@@ -15,6 +15,15 @@ void refuse_device_loop(const char* what) {
                              "without CUDA; use backend=host, or build it with the CUDA back end");
 }
 
+void synchronize(const Target& target) {
+    if (!target.device) return;
+#if defined(__CUDACC__)
+    EMERGENT_CUDA_CHECK(cudaStreamSynchronize(static_cast<cudaStream_t>(target.stream)));
+#else
+    refuse_device_loop("synchronize");
+#endif
+}
+
 void read_from(const Target& target, void* to, const void* from, std::size_t bytes) {
     if (target.device) {
 #if defined(__CUDACC__)

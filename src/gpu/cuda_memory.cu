@@ -18,6 +18,14 @@ public:
     void release(void* p) noexcept override {
         if (p) cudaFree(p);  // no check: called from destructors too
     }
+    void* allocate_staging(std::size_t bytes) override {
+        void* p = nullptr;
+        EMERGENT_CUDA_CHECK(cudaMallocHost(&p, bytes > 0 ? bytes : 1));
+        return p;
+    }
+    void release_staging(void* p) noexcept override {
+        if (p) cudaFreeHost(p);
+    }
     void to_backend(void* to, const void* from, std::size_t bytes) override {
         EMERGENT_CUDA_CHECK(cudaMemcpy(to, from, bytes, cudaMemcpyHostToDevice));
     }
