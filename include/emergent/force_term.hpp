@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include <vector>
 
@@ -104,6 +105,35 @@ std::unique_ptr<ForceTerm> make_uniform_field(const Vec3& acceleration);
 std::unique_ptr<ForceTerm> make_plane_wall(int axis, double position, int side,
                                            const GranularPair& contact, double range_factor = 1.0,
                                            const Vec3& wall_velocity = {0, 0, 0});
+
+/// A vibrating base of thin rods laid along a periodic profile (paper: the sawtooth base of the
+/// vibrated layer). The profile is a polyline z(u) over one period, `vertices` (u, z) from u = 0
+/// to u = period with the same z at both ends (at most 5 vertices); rods of diameter
+/// `rod_diameter` lie along it `rod_spacing` apart (each edge divided evenly). `rings` false:
+/// the rods are lines along y at u = x (a box's straight teeth); true: rings about the z axis of
+/// radius u (a round container's concentric teeth). Rods exist for u_lo <= u <= u_hi (the
+/// container's floor; unbounded for a floor periodic in x). The whole base moves vertically,
+/// z_b(t) = amplitude sin(2 pi frequency t). A sphere meets a rod with overlap repulsion and
+/// normal damping of `contact` (no sliding friction) acting in the plane normal to the rod,
+/// at r_c = range_factor (d + rod_diameter) / 2.
+struct RodBase {
+    std::vector<std::pair<double, double>> vertices{{0.0, 0.0}, {1.0, 0.0}};
+    double period = 1;
+    double rod_spacing = 0.5, rod_diameter = 0.2;
+    bool rings = false;
+    double u_lo = -1e300, u_hi = 1e300;
+    double amplitude = 0, frequency = 0;
+};
+std::unique_ptr<ForceTerm> make_rod_base(const RodBase& base, const GranularPair& contact,
+                                         double range_factor = 1.0);
+/// The rods' centres (u, z) at rest (z_b = 0) with lo <= u <= hi, for pictures and tests.
+std::vector<std::pair<double, double>> rod_base_rods(const RodBase& base, double lo, double hi);
+
+/// A smooth cylindrical wall about the z axis (through x = y = 0) of radius `radius`, holding
+/// spheres inside with the contact law `contact` at r_c = range_factor d / 2 from the surface;
+/// no sliding friction (the paper's smooth container walls).
+std::unique_ptr<ForceTerm> make_cylinder_wall(double radius, const GranularPair& contact,
+                                              double range_factor = 1.0);
 
 /// The drum's curved wall: a cylinder about the z axis (through x = y = 0) of radius `radius`,
 /// spanning z_lo..z_hi, turning at `omega` about +z, made rough by spheres of diameter

@@ -47,6 +47,18 @@ std::vector<Vec3> cubic_lattice_points(const Vec3& lo, const Vec3& hi, const Vec
 std::int64_t fill_wall_bounded_layer(Simulation& sim, double lx, double ly, double height,
                                      double density);
 
+/// Centres for spheres of the given diameters, placed one after another at uniformly random
+/// points of [lo, hi) where `inside(x, d)` holds, each where it overlaps none placed before
+/// (centres at least range (d_i + d_j) / 2 apart): random sequential addition, which reaches
+/// volume fractions near 0.3 quickly (a loose start for a granular layer that then settles a
+/// short way, rather than a sparse lattice that falls far). The same for a seed on every rank.
+/// Throws InputError when a sphere finds no place in `tries` attempts (the region is too full).
+std::vector<Vec3> random_sequential_packing(const Vec3& lo, const Vec3& hi,
+                                            const std::vector<double>& diameters, double range,
+                                            std::uint64_t seed,
+                                            const std::function<bool(const Vec3&, double)>& inside,
+                                            int tries = 20000);
+
 /// Lattice spacing for number density `density` on a simple cubic lattice.
 inline double cubic_spacing(double density) { return 1.0 / std::cbrt(density); }
 

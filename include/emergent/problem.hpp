@@ -40,6 +40,11 @@ public:
     virtual ParticleEstimate expected_particles(const Simulation& /*sim*/) const { return {}; }
     /// Grids the scene coarse-grains on, besides the run's `fields.grid` box grid.
     virtual std::vector<FieldGrid> field_grids(const Simulation& /*sim*/) const { return {}; }
+    /// Called once as the measured phase begins (at step equilibration_steps, before its first
+    /// sample; not again when a run continues past it): the place to leave what settling left
+    /// behind that the measured phase must not inherit, e.g. the net drift a layer picked up
+    /// while it landed. Collective.
+    virtual void on_equilibrated(Simulation& /*sim*/) {}
     /// The scene's own measures at a sample step. Collective: the values must be the same on
     /// every rank. The last ones also go into the run summary.
     virtual Measures measures(Simulation& /*sim*/) { return {}; }

@@ -144,7 +144,10 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
     const long long checkpoint_every = cfg.integer("checkpoint_every");
     ProgressLine progress(cfg.real("progress_interval"), sim.step_index(), end, sim.rank() == 0);
     auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
-    if (sim.step_index() == n_eq && series.empty()) series.push_back(sim.measure());
+    if (sim.step_index() == n_eq && series.empty()) {
+        problem.on_equilibrated(sim);
+        series.push_back(sim.measure());
+    }
     RunGuard guard(cfg, sim, !req.output_dir.empty());
     sim.reset_phase_times();
     Clock::time_point t0 = Clock::now();
@@ -157,6 +160,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
             const long long s = sim.step_index() + 1;
             const bool checkpoint = checkpoint_every > 0 && s % checkpoint_every == 0;
             sim.step(sample_due(s));
+            if (s == n_eq) problem.on_equilibrated(sim);
             // Sampled bounds (energy drift, overlaps) are checked before this step's state may
             // become the last good one.
             ThermoSample t;

@@ -2,8 +2,14 @@
 // Lattice filling.
 #include "emergent/lattice.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "emergent/error.hpp"
+#include "emergent/random.hpp"
 
 #include "emergent/simulation.hpp"
 
@@ -103,4 +109,60 @@ std::int64_t fill_wall_bounded_layer(Simulation& sim, double lx, double ly, doub
                                    [](const Vec3&) { return true; });
 }
 
+std::vector<Vec3> random_sequential_packing(const Vec3& lo, const Vec3& hi,
+                                            const std::vector<double>& diameters, double range,
+                                            std::uint64_t seed,
+                                            const std::function<bool(const Vec3&, double)>& inside,
+                                            int tries) {
+    double d_max = 0;
+    for (double d : diameters) d_max = std::max(d_max, d);
+    // Cells no narrower than the largest contact distance: overlaps lie in the 27 around.
+    const double cell = std::max(range * d_max, 1e-9);
+    long n[3];
+    for (int a = 0; a < 3; ++a) n[a] = std::max(1L, static_cast<long>(std::floor((hi[a] - lo[a]) / cell)));
+    auto index = [&](const Vec3& x, int a) {
+        const long k = static_cast<long>(std::floor((x[a] - lo[a]) / (hi[a] - lo[a]) * n[a]));
+        return std::min(std::max(k, 0L), n[a] - 1);
+    };
+    std::vector<std::vector<std::uint32_t>> cells(static_cast<std::size_t>(n[0] * n[1] * n[2]));
+    std::vector<Vec3> placed;
+    placed.reserve(diameters.size());
+    for (std::size_t i = 0; i < diameters.size(); ++i) {
+        const double d = diameters[i];
+        bool done = false;
+        for (int t = 0; t < tries && !done; ++t) {
+            // Draws keyed by sphere and attempt: the same sequence on every rank.
+            const std::uint64_t key = (static_cast<std::uint64_t>(i) << 20) ^ static_cast<std::uint64_t>(t);
+            const Vec3 x{lo.x + (hi.x - lo.x) * uniform_open(seed, key, 0),
+                         lo.y + (hi.y - lo.y) * uniform_open(seed, key, 1),
+                         lo.z + (hi.z - lo.z) * uniform_open(seed, key, 2)};
+            if (!inside(x, d)) continue;
+            const long c[3] = {index(x, 0), index(x, 1), index(x, 2)};
+            bool free = true;
+            for (long kz = std::max(0L, c[2] - 1); free && kz <= std::min(n[2] - 1, c[2] + 1); ++kz)
+                for (long ky = std::max(0L, c[1] - 1); free && ky <= std::min(n[1] - 1, c[1] + 1); ++ky)
+                    for (long kx = std::max(0L, c[0] - 1); free && kx <= std::min(n[0] - 1, c[0] + 1); ++kx)
+                        for (std::uint32_t j : cells[static_cast<std::size_t>((kz * n[1] + ky) * n[0] + kx)]) {
+                            const Vec3 r = x - placed[j];
+                            const double reach = 0.5 * range * (d + diameters[j]);
+                            if (dot(r, r) < reach * reach) {
+                                free = false;
+                                break;
+                            }
+                        }
+            if (!free) continue;
+            cells[static_cast<std::size_t>((c[2] * n[1] + c[1]) * n[0] + c[0])].push_back(
+                static_cast<std::uint32_t>(placed.size()));
+            placed.push_back(x);
+            done = true;
+        }
+        if (!done)
+            throw InputError("random packing: sphere " + std::to_string(i) + " of " +
+                             std::to_string(diameters.size()) + " found no free place in " +
+                             std::to_string(tries) + " tries (the region is too full)");
+    }
+    return placed;
+}
+
 }  // namespace emergent
+

@@ -8,6 +8,7 @@
 #include "emergent/error.hpp"
 #include "emergent/execution.hpp"
 #include "force/dispatch.hpp"
+#include "force/per_particle_term.hpp"
 #include "force/granular_contact.hpp"
 #include "force/granular_full_list.hpp"
 #include "force/uniform_field.hpp"
@@ -74,14 +75,6 @@ struct ContactLoop {
     }
 };
 
-/// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.
-void add_sampled(const BackendParticles& p, std::size_t n, bool virial, ForceSums& sums) {
-    sums.potential += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.energy});
-    if (virial) sums.virial += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.virial});
-    sums.max_overlap = std::max(
-        sums.max_overlap, exec::transform_max(p.target, n, 0.0, exec::ElementOf<Real>{p.overlap}));
-}
-
 /// Contacts over the full list (the back end's form) for the features chosen by dispatch_bools.
 struct FullListContacts {
     const BackendParticles& p;
@@ -95,7 +88,7 @@ struct FullListContacts {
             p.position, p.velocity, p.diameter, p.species, p.force, p.list_offset, p.list_index,
             table, settings.n_species, 0.5 * settings.range_factor, p.energy, p.virial, p.overlap};
         exec::for_each(p.target, p.n_owned, contacts);
-        if constexpr (Sample) add_sampled(p, p.n_owned, true, sums);
+        if constexpr (Sample) force::add_sampled(p, p.n_owned, true, sums);
     }
 };
 
@@ -114,7 +107,7 @@ struct WallContacts {
                        force::PlaneWallForce<Sample, Damping, Friction>{
                            p.position, p.velocity, p.diameter, p.force, axis, Real(side), position,
                            range, pair, velocity, p.energy, p.overlap});
-        if constexpr (Sample) add_sampled(p, p.n_owned, false, sums);
+        if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
     }
 };
 
@@ -200,16 +193,7 @@ public:
     bool on_backend() const override { return true; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
                     ForceSums& sums) const override {
-        BackendParticles p = host_view(s, *c.mass);
-        p.n_owned = list.n_owned();
-        std::vector<Real> energy, overlap;  // sampling steps only
-        if (sample) {
-            energy.resize(p.n_owned);
-            overlap.resize(p.n_owned);
-            p.energy = energy.data();
-            p.overlap = overlap.data();
-        }
-        add(p, sample, sums);
+        add(force::HostParticles(s, *c.mass, list.n_owned(), sample).p, sample, sums);
     }
     void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
                                ForceSums& sums) const override {

@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// What force terms acting on each particle alone (walls, bases, fields) share: the host's
+// store seen as the back end's particles, so one loop serves both forms, and the sums a
+// sampling pass leaves per particle.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "emergent/backend_particles.hpp"
+#include "emergent/execution.hpp"
+#include "emergent/force_term.hpp"
+
+namespace emergent::force {
+
+/// The store's owned particles as BackendParticles, with per-particle energy and overlap
+/// scratch on sampling steps: a term's host form runs its back-end loop on it.
+struct HostParticles {
+    std::vector<Real> energy, overlap;
+    BackendParticles p;
+    HostParticles(ParticleStore& s, const std::vector<double>& mass, std::size_t n_owned, bool sample)
+        : p(host_view(s, mass)) {
+        p.n_owned = n_owned;
+        if (!sample) return;
+        energy.resize(n_owned);
+        overlap.resize(n_owned);
+        p.energy = energy.data();
+        p.overlap = overlap.data();
+    }
+};
+
+/// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.
+inline void add_sampled(const BackendParticles& p, std::size_t n, bool virial, ForceSums& sums) {
+    sums.potential += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.energy});
+    if (virial) sums.virial += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.virial});
+    sums.max_overlap = std::max(
+        sums.max_overlap, exec::transform_max(p.target, n, 0.0, exec::ElementOf<Real>{p.overlap}));
+}
+
+}  // namespace emergent::force
