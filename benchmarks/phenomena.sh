@@ -4,7 +4,7 @@
 #
 # usage: benchmarks/phenomena.sh [SCENE...] [--seed S] [--preset P] [--ranks R] [--out DIR]
 #                                [--set KEY=VALUE ...]
-#   SCENE: taylor-couette, rayleigh-benard, rotating-drum (default: all three)
+#   SCENE: taylor-couette, rayleigh-benard, rotating-drum, vibrated-sawtooth (default: all four)
 #   --preset: default small (the preset that shows the phenomenon on a 2-core machine)
 #   --ranks: MPI ranks per run (default 2); --out: default /tmp/emergent_phenomena
 #   --seed, --set: passed to the scene (a control run sets what must make the check fail, e.g.
@@ -16,7 +16,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 scenes=() seed="" preset=small ranks=2 out=/tmp/emergent_phenomena sets=()
-known="taylor-couette rayleigh-benard rotating-drum"
+known="taylor-couette rayleigh-benard rotating-drum vibrated-sawtooth"
 while [ $# -gt 0 ]; do
   case $1 in
     --seed) seed=${2:?--seed needs a value}; shift 2 ;;
