@@ -7,6 +7,7 @@
 
 #include "emergent/error.hpp"
 #include "force/dispatch.hpp"
+#include "force/per_particle_term.hpp"
 #include "force/rough_cylinder.hpp"
 #include "force/rough_end_cap.hpp"
 #include "neighbour/neighbour_list.hpp"
@@ -15,7 +16,33 @@ namespace emergent {
 
 namespace {
 
-/// Applies force::rough_wall_force of one grid (Lattice) to every owned sphere.
+/// force::rough_wall_force of one grid (Lattice) on particle i; with Sample, energy[i] and
+/// overlap[i] (in diameters) get its contact energy and largest overlap.
+template <class Lattice, bool Sample, bool Damping, bool Friction>
+struct RoughWallForce {
+    const Vec3* x;
+    const Vec3* v;
+    const Real* diameter;
+    Vec3* f;
+    Lattice lattice;
+    GranularPair p;
+    Real range, d_wall, time;
+    Real* energy = nullptr;
+    Real* overlap = nullptr;
+
+    EMERGENT_HD void operator()(std::size_t i) const {
+        force::ContactTally tally;
+        f[i] += force::rough_wall_force<Damping, Friction>(lattice, p, range, d_wall, x[i], v[i],
+                                                           diameter[i], time, Sample ? &tally : nullptr);
+        if constexpr (Sample) {
+            energy[i] = tally.energy;
+            overlap[i] = tally.max_overlap;
+        }
+    }
+};
+
+/// Applies force::rough_wall_force of one grid (Lattice) to every owned sphere: one loop for
+/// the host's store and the back end's arrays.
 template <class Lattice>
 class RoughWall final : public ForceTerm {
 public:
@@ -28,33 +55,35 @@ public:
     }
     double cutoff() const override { return 0; }
     unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
+    bool on_backend() const override { return true; }
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
                     bool sample, ForceSums& sums) const override {
-        const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
-        force::dispatch_bools(Loop{*this, s, list.n_owned(), c.time, sample, sums}, damping,
-                              friction);
+        add(force::HostParticles(s, *c.mass, list.n_owned(), sample).p, c.time, sample, sums);
+    }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext& c, bool sample,
+                               ForceSums& sums) const override {
+        add(p, c.time, sample, sums);
     }
 
 private:
     struct Loop {
         const RoughWall& w;
-        ParticleStore& s;
-        std::size_t n_owned;
+        const BackendParticles& p;
         double time;
-        bool sample;
         ForceSums& sums;
-        template <bool Damping, bool Friction>
+        template <bool Sample, bool Damping, bool Friction>
         void operator()() const {
-            force::ContactTally tally;
-            for (std::size_t i = 0; i < n_owned; ++i)
-                s.force[i] += force::rough_wall_force<Damping, Friction>(
-                    w.lattice_, w.p_, w.range_, w.d_wall_, s.position[i], s.velocity[i],
-                    s.diameter[i], time, sample ? &tally : nullptr);
-            if (!sample) return;
-            sums.potential += tally.energy;
-            sums.max_overlap = std::max(sums.max_overlap, tally.max_overlap);
+            exec::for_each(p.target, p.n_owned,
+                           RoughWallForce<Lattice, Sample, Damping, Friction>{
+                               p.position, p.velocity, p.diameter, p.force, w.lattice_, w.p_,
+                               w.range_, w.d_wall_, time, p.energy, p.overlap});
+            if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
         }
     };
+    void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const {
+        const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
+        force::dispatch_bools(Loop{*this, p, time, sums}, sample, damping, friction);
+    }
 
     std::string name_;
     Lattice lattice_;
