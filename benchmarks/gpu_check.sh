@@ -118,10 +118,13 @@ scene_checks() {
   # state: only the order of additions differs there.
   run1() { emergent run "$@" --preset tiny --set equilibration_steps=0 --set progress_interval=0 \
              >/dev/null 2>"$dir/err" || { cat "$dir/err"; return 1; }; }
-  for scene in lj-fluid granular-bed planar-couette rayleigh-benard rotating-drum taylor-couette; do
-    case $scene in rotating-drum) layout=half ;; *) layout=full ;; esac
+  for scene in lj-fluid granular-bed planar-couette rayleigh-benard rotating-drum taylor-couette \
+               vibrated-sawtooth; do
+    layout=full  # every scene's force terms have a back-end form
+    local extra=()
+    [ $scene = vibrated-sawtooth ] && extra=(--set steps=5000 --set big_fraction=0.3)
     for backend in host $dev ${dev}2; do
-      run1 "$scene" --set backend=${backend%2} --set neighbour_list=$layout -o "$dir/$scene.$backend" ||
+      run1 "$scene" "${extra[@]}" --set backend=${backend%2} --set neighbour_list=$layout -o "$dir/$scene.$backend" ||
         { echo "$scene: $backend run failed"; rc=1; continue 2; }
     done
     out=$(compare_thermo "$dir/$scene.host/thermo.dat" "$dir/$scene.$dev/thermo.dat")

@@ -28,10 +28,15 @@ for r in "${runs[@]}"; do
   name=${r%%:*} setting=${r#*:}
   [ -f "$out/$name.json" ] && continue  # a stopped map continues where it was
   start=$(date +%s)
-  mpirun -q --oversubscribe -np "$ranks" "$exe" run vibrated-sawtooth --preset tiny \
-    --set big_fraction=0.3 --set depth=6 --set profile_height=24 --set profile_bins=24 \
-    --set sample_every=50 --set steps=$((cycles * 500)) --set progress_interval=0 \
-    --set "$setting" --summary-json "$out/$name.json" >/dev/null
+  # A run the engine stops (a guard, a grain leaving the box) is a result too: its message
+  # goes into the table.
+  if ! mpirun -q --oversubscribe -np "$ranks" "$exe" run vibrated-sawtooth --preset tiny \
+      --set big_fraction=0.3 --set depth=6 --set profile_height=24 --set profile_bins=24 \
+      --set sample_every=50 --set steps=$((cycles * 500)) --set progress_interval=0 \
+      --set "$setting" --summary-json "$out/$name.json" >/dev/null 2>"$work/err"; then
+    /usr/bin/python3 -c 'import json, sys; json.dump({"stopped": sys.argv[1]}, open(sys.argv[2], "w"))' \
+      "$(tail -n 1 "$work/err")" "$out/$name.json"
+  fi
   echo "# $name ($setting): $(( $(date +%s) - start )) s"
 done
 /usr/bin/python3 - "$out" "${runs[@]}" <<'PY'
@@ -42,6 +47,9 @@ print("|---|---|---|---|---|---|---|---|---|")
 for r in runs:
     name, setting = r.split(":", 1)
     s = json.load(open(f"{out}/{name}.json"))
+    if "stopped" in s:
+        print(f"| {name} | {setting} | | | stopped: {s['stopped']} | | | | |")
+        continue
     m = s["scene_measures"]
     f, e = m["horizontal_flux"], m["horizontal_flux_stderr"]
     fs, fb = m["horizontal_flux_small"], m["horizontal_flux_big"]
