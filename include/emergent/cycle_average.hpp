@@ -8,6 +8,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "emergent/block_error.hpp"
+
 namespace emergent {
 
 /// Samples (time, value) from `start` on, grouped by cycle k = floor((time - start) / period);
@@ -59,18 +61,7 @@ public:
         std::size_t length = 1;
         while (m.size() / (2 * length) >= min_blocks) length *= 2;
         block_cycles_ = length;
-        const std::size_t n = m.size() / length;
-        std::vector<double> means(n, 0.0);
-        for (std::size_t b = 0; b < n; ++b) {
-            for (std::size_t k = 0; k < length; ++k) means[b] += m[b * length + k];
-            means[b] /= length;
-        }
-        double avg = 0;
-        for (double x : means) avg += x;
-        avg /= n;
-        double var = 0;
-        for (double x : means) var += (x - avg) * (x - avg);
-        return std::sqrt(var / (n - 1) / n);
+        return block_standard_error(m, length, m.size() / length);
     }
     /// Cycles per block of the last standard_error().
     std::size_t block_cycles() const { return block_cycles_; }

@@ -179,29 +179,18 @@ private:
     Vec3 g_;
 };
 
-class PlaneWall final : public ForceTerm {
+class PlaneWall final : public force::PerParticleWall {
 public:
     PlaneWall(int axis, double position, int side, const GranularPair& p, double range,
               const Vec3& velocity)
         : axis_(axis), position_(position), side_(side), p_(p), range_(range), velocity_(velocity) {}
     std::string name() const override { return "plane-wall"; }
-    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
     bool conservative() const override {
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && dot(velocity_, velocity_) == 0;
     }
-    double cutoff() const override { return 0; }
-    bool on_backend() const override { return true; }
-    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
-                    ForceSums& sums) const override {
-        add(force::HostParticles(s, *c.mass, list.n_owned(), sample).p, sample, sums);
-    }
-    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
-                               ForceSums& sums) const override {
-        add(p, sample, sums);
-    }
 
 private:
-    void add(const BackendParticles& p, bool sample, ForceSums& sums) const {
+    void add(const BackendParticles& p, double, bool sample, ForceSums& sums) const override {
         const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
         force::dispatch_bools(WallContacts{p, axis_, side_, position_, range_, p_, velocity_, sums},
                               sample, damping, friction);

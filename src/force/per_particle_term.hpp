@@ -11,6 +11,7 @@
 #include "emergent/backend_particles.hpp"
 #include "emergent/execution.hpp"
 #include "emergent/force_term.hpp"
+#include "neighbour/neighbour_list.hpp"
 
 namespace emergent::force {
 
@@ -28,6 +29,30 @@ struct HostParticles {
         p.energy = energy.data();
         p.overlap = overlap.data();
     }
+};
+
+/// A granular wall or base acting on each particle alone: one loop, written for the back end's
+/// particles, serves both forms (the host form runs it on the store through HostParticles).
+/// A term implements add() for the particles given; it reads positions, velocities and
+/// diameters.
+class PerParticleWall : public ForceTerm {
+public:
+    double cutoff() const override { return 0; }
+    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
+    bool on_backend() const override { return true; }
+    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
+                    ForceSums& sums) const final {
+        add(HostParticles(s, *c.mass, list.n_owned(), sample).p, c.time, sample, sums);
+    }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext& c, bool sample,
+                               ForceSums& sums) const final {
+        add(p, c.time, sample, sums);
+    }
+
+protected:
+    /// The term's forces on p's owned particles at time `time`; when `sample`, its energy and
+    /// largest overlap too (add_sampled).
+    virtual void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const = 0;
 };
 
 /// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.

@@ -18,23 +18,12 @@ namespace {
 
 constexpr double kTwoPi = 6.283185307179586;
 
-class RodBaseTerm final : public ForceTerm {
+class RodBaseTerm final : public force::PerParticleWall {
 public:
     RodBaseTerm(const force::RodLattice& lattice, const GranularPair& p, double range, double d_rod)
         : lattice_(lattice), p_(p), range_(range), d_rod_(d_rod) {}
     std::string name() const override { return "rod-base"; }
     bool conservative() const override { return p_.gamma_n == 0 && lattice_.amplitude == 0; }
-    double cutoff() const override { return 0; }
-    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
-    bool on_backend() const override { return true; }
-    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
-                    ForceSums& sums) const override {
-        add(force::HostParticles(s, *c.mass, list.n_owned(), sample).p, c.time, sample, sums);
-    }
-    void add_forces_on_backend(const BackendParticles& p, const ForceContext& c, bool sample,
-                               ForceSums& sums) const override {
-        add(p, c.time, sample, sums);
-    }
 
 private:
     struct Loop {
@@ -51,7 +40,7 @@ private:
             if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
         }
     };
-    void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const {
+    void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const override {
         force::dispatch_bools(Loop{*this, p, time, sums}, sample, p_.gamma_n != 0);
     }
 
@@ -60,23 +49,12 @@ private:
     double range_, d_rod_;
 };
 
-class CylinderWallTerm final : public ForceTerm {
+class CylinderWallTerm final : public force::PerParticleWall {
 public:
     CylinderWallTerm(double radius, const GranularPair& p, double range)
         : radius_(radius), p_(p), range_(range) {}
     std::string name() const override { return "cylinder-wall"; }
     bool conservative() const override { return p_.gamma_n == 0; }
-    double cutoff() const override { return 0; }
-    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
-    bool on_backend() const override { return true; }
-    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
-                    ForceSums& sums) const override {
-        add(force::HostParticles(s, *c.mass, list.n_owned(), sample).p, sample, sums);
-    }
-    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
-                               ForceSums& sums) const override {
-        add(p, sample, sums);
-    }
 
 private:
     struct Loop {
@@ -92,7 +70,7 @@ private:
             if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
         }
     };
-    void add(const BackendParticles& p, bool sample, ForceSums& sums) const {
+    void add(const BackendParticles& p, double, bool sample, ForceSums& sums) const override {
         force::dispatch_bools(Loop{*this, p, sums}, sample, p_.gamma_n != 0);
     }
 

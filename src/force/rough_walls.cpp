@@ -44,7 +44,7 @@ struct RoughWallForce {
 /// Applies force::rough_wall_force of one grid (Lattice) to every owned sphere: one loop for
 /// the host's store and the back end's arrays.
 template <class Lattice>
-class RoughWall final : public ForceTerm {
+class RoughWall final : public force::PerParticleWall {
 public:
     RoughWall(std::string name, const Lattice& lattice, const GranularPair& p, double range,
               double d_wall)
@@ -52,17 +52,6 @@ public:
     std::string name() const override { return name_; }
     bool conservative() const override {
         return p_.gamma_n == 0 && (p_.gamma_s == 0 || p_.mu == 0) && lattice_.omega == 0;
-    }
-    double cutoff() const override { return 0; }
-    unsigned particle_fields() const override { return kPosition | kVelocity | kDiameter; }
-    bool on_backend() const override { return true; }
-    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c,
-                    bool sample, ForceSums& sums) const override {
-        add(force::HostParticles(s, *c.mass, list.n_owned(), sample).p, c.time, sample, sums);
-    }
-    void add_forces_on_backend(const BackendParticles& p, const ForceContext& c, bool sample,
-                               ForceSums& sums) const override {
-        add(p, c.time, sample, sums);
     }
 
 private:
@@ -80,7 +69,7 @@ private:
             if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
         }
     };
-    void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const {
+    void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const override {
         const bool damping = p_.gamma_n != 0, friction = p_.gamma_s != 0 && p_.mu != 0;
         force::dispatch_bools(Loop{*this, p, time, sums}, sample, damping, friction);
     }

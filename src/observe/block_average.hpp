@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "emergent/block_error.hpp"
+
 namespace emergent {
 
 /// Collects samples and reports their mean and the standard error from `n_blocks` contiguous
@@ -29,18 +31,7 @@ public:
     double standard_error() const {
         const std::size_t per_block = samples_.size() / n_blocks_;
         if (per_block < 2) return NAN;
-        std::vector<double> means(n_blocks_, 0.0);
-        for (std::size_t b = 0; b < n_blocks_; ++b) {
-            for (std::size_t k = 0; k < per_block; ++k) means[b] += samples_[b * per_block + k];
-            means[b] /= per_block;
-        }
-        double m = 0;
-        for (double x : means) m += x;
-        m /= n_blocks_;
-        double var = 0;
-        for (double x : means) var += (x - m) * (x - m);
-        var /= (n_blocks_ - 1);
-        return std::sqrt(var / n_blocks_);
+        return block_standard_error(samples_, per_block, n_blocks_);
     }
 
 private:
