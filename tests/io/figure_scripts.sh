@@ -36,7 +36,11 @@ assert len(rows) == 6 + 2, rows
 PY
 "$exe" run rotating-drum --preset tiny --set progress_interval=0 -o "$dir/rd" >/dev/null
 "$scripts/plot_rotating_drum" "$dir/rd" "$dir/rd/fig" >/dev/null
-for png in "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
+"$exe" run vibrated-sawtooth --preset tiny --set steps=5000 --set sample_every=250 \
+  --set slot_ends=walls --set output.every=2500 --set progress_interval=0 -o "$dir/vs" >/dev/null
+"$scripts/plot_vibrated_sawtooth" "$dir/vs" "$dir/vs/fig" >/dev/null
+for png in "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" \
+           "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
            "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
            "$dir/rb/fig-flow.png" "$dir/cmp.png"; do
