@@ -6,7 +6,8 @@
 # 2.0} (by amplitude), gentle_fraction in {0.5, 0.7, 0.85, 1.0}, depth in {3, 6, 12}. Each run:
 # 10 cycles of settling, then CYCLES measured cycles; the flux's error is from blocks of whole
 # cycles (CycleAverage). Positive flux: toward +x, the direction in which the gentle edges rise.
-# usage: benchmarks/sawtooth_flux_map.sh [CYCLES] [RANKS] [OUT]   (defaults 300, 2,
+# usage: [FLUX_MAP_SET=key=value] benchmarks/sawtooth_flux_map.sh [CYCLES] [RANKS] [OUT]
+#        (FLUX_MAP_SET: one more setting for every run, e.g. base_backing=smooth; defaults 300, 2,
 #        benchmarks/logs/sawtooth_flux_map): OUT gets one summary per run (RUN.json); the table
 #        goes to stdout (save it as the log); scripts/plot_sawtooth_flux_map OUT draws the figure.
 set -euo pipefail
@@ -23,6 +24,7 @@ for G in 1.0 1.1 1.26 1.5 2.0; do runs+=("gamma_$G:amplitude=$(amplitude "$G")")
 for g in 0.5 0.7 0.85; do runs+=("gentle_$g:gentle_fraction=$g"); done
 for d in 3 12; do runs+=("depth_$d:depth=$d"); done
 echo "# sawtooth_flux_map.sh $cycles cycles, $ranks ranks; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+echo "# every run also: ${FLUX_MAP_SET:-(nothing)}"
 echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
 for r in "${runs[@]}"; do
   name=${r%%:*} setting=${r#*:}
@@ -33,7 +35,8 @@ for r in "${runs[@]}"; do
   if ! mpirun -q --oversubscribe -np "$ranks" "$exe" run vibrated-sawtooth --preset tiny \
       --set big_fraction=0.3 --set depth=6 --set profile_height=24 --set profile_bins=24 \
       --set sample_every=50 --set steps=$((cycles * 500)) --set progress_interval=0 \
-      --set "$setting" --summary-json "$out/$name.json" >/dev/null 2>"$work/err"; then
+      --set "$setting" ${FLUX_MAP_SET:+--set "$FLUX_MAP_SET"} --summary-json "$out/$name.json" \
+      >/dev/null 2>"$work/err"; then
     /usr/bin/python3 -c 'import json, sys; json.dump({"stopped": sys.argv[1]}, open(sys.argv[2], "w"))' \
       "$(tail -n 1 "$work/err")" "$out/$name.json"
   fi

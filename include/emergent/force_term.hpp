@@ -115,7 +115,9 @@ std::unique_ptr<ForceTerm> make_plane_wall(int axis, double position, int side,
 /// container's floor; unbounded for a floor periodic in x). The whole base moves vertically,
 /// z_b(t) = amplitude sin(2 pi frequency t). A sphere meets a rod with overlap repulsion and
 /// normal damping of `contact` (no sliding friction) acting in the plane normal to the rod,
-/// at r_c = range_factor (d + rod_diameter) / 2.
+/// at r_c = range_factor (d + rod_diameter) / 2. `backing`: a smooth surface along the profile
+/// behind the rods, met at r_c = range_factor d / 2 (so only by a sphere pressed between the
+/// rods deeper than they let it go), that also pushes back out a sphere below the profile.
 struct RodBase {
     std::vector<std::pair<double, double>> vertices{{0.0, 0.0}, {1.0, 0.0}};
     double period = 1;
@@ -123,6 +125,7 @@ struct RodBase {
     bool rings = false;
     double u_lo = -1e300, u_hi = 1e300;
     double amplitude = 0, frequency = 0;
+    bool backing = false;
 };
 std::unique_ptr<ForceTerm> make_rod_base(const RodBase& base, const GranularPair& contact,
                                          double range_factor = 1.0);

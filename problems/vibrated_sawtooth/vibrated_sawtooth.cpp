@@ -105,6 +105,7 @@ public:
         }
         base.amplitude = amplitude_;
         base.frequency = frequency_;
+        base.backing = c_.text("base_backing") == "smooth";
         sim.add_force(make_rod_base(base, contact, kRange));
         // Smooth vertical walls: overlap and normal damping, no friction; the same for the lid.
         // Each is backed by a hard (specular) wall at its surface, which no grain centre
@@ -460,6 +461,11 @@ ProblemInfo vibrated_sawtooth_info() {
               "share of the period taken by the gentle edge: 0.5 symmetric teeth, 1 a vertical "
               "steep edge (the paper's)")
         .real("rod_spacing", 0.5, 0, 10, "sigma", "spacing of the rods along the tooth profile", true)
+        .choice("base_backing", "none", {"none", "smooth"},
+                "none: the rods alone (the paper's base; a thick or strongly shaken layer can "
+                "squeeze a grain between them: benchmarks/RESULTS.md, flux map); smooth: a surface "
+                "along the profile behind the rods, met only by a grain pressed deeper than the "
+                "rods let it go")
         .real("rod_diameter", 0.2, 0, 10, "sigma", "diameter of the rods", true)
         .real("frequency", 0.4, 0, 100, "1/tau", "vibration frequency f", true)
         .real("amplitude", 1, 0, 1e3, "sigma", "vibration amplitude a: z_base = a sin(2 pi f t)")
@@ -482,7 +488,7 @@ ProblemInfo vibrated_sawtooth_info() {
         .real("profile_height", 24, 0, 1e6, "sigma", "height the velocity profiles span above the base", true)
         .integer("segregation_bins", 27, 1, 1e6, "1", "bins along x (r) of the big-grain fraction");
     info.schema.structural({"container", "length", "width", "diameter", "slot_ends", "base",
-                            "tooth_period", "tooth_height", "gentle_fraction", "rod_spacing",
+                            "tooth_period", "tooth_height", "gentle_fraction", "rod_spacing", "base_backing",
                             "rod_diameter", "frequency", "particles", "depth", "big_fraction",
                             "d_small", "d_big", "start_fraction", "profile_bins",
                             "profile_height", "segregation_bins"})

@@ -114,6 +114,7 @@ force::RodLattice force::rod_lattice(const RodBase& b) {
     l.u_lo = b.u_lo;
     l.u_hi = b.u_hi;
     l.rings = b.rings;
+    l.backing = b.backing;
     l.amplitude = b.amplitude;
     l.angular_frequency = kTwoPi * b.frequency;
     l.top = v[0].second;

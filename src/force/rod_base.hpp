@@ -27,6 +27,7 @@ struct RodLattice {
     Real u_lo = 0, u_hi = 0;  ///< rods exist where u_lo <= u <= u_hi (the container's floor)
     Real top = 0;             ///< highest rod centre above the base level
     bool rings = false;       ///< rods are rings about the z axis (u = r), else lines along y (u = x)
+    bool backing = false;     ///< a smooth surface along the profile behind the rods
     Real amplitude = 0, angular_frequency = 0;  ///< base level z_b(t) = a sin(w t)
 
     EMERGENT_HD Real level(Real t) const { return amplitude * std::sin(angular_frequency * t); }
@@ -37,6 +38,59 @@ struct RodLattice {
 
 /// The lattice of a RodBase; InputError naming what does not fit.
 RodLattice rod_lattice(const RodBase& base);
+
+/// The backing: a smooth surface along the profile (through the rods' centres) that a sphere
+/// meets at r_c = range d / 2, less than the rods' reach, so it acts only on a sphere pressed
+/// between the rods deeper than they let it go, and pushes back out one that got below the
+/// profile. Without it a thick or strongly shaken layer can squeeze a grain through the rods.
+/// Periods first..last of the profile are searched; the profile runs toward +u, so each edge's
+/// left normal points out of the base.
+template <bool Damping>
+EMERGENT_HD inline Vec3 backing_force(const RodLattice& b, const GranularPair& p, Real range, Real r,
+                                      Real z, Real cx, Real cy, const Vec3& v_rel, Real d, int first,
+                                      int last, ContactTally* tally) {
+    const Real rc = 0.5 * range * d;
+    Real best = 1e300, hu = 0, hz = 0, nu = 0, nz = 1;
+    for (int m = first; m <= last; ++m)
+        for (int e = 0; e < b.n_edges; ++e) {
+            if (b.count[e] == 0) continue;
+            const Real au = b.start_u[e] + m * b.period, az = b.start_z[e];
+            const Real eu = b.step_u[e] * b.count[e], ez = b.step_z[e] * b.count[e];
+            const Real len2 = eu * eu + ez * ez;
+            Real s = ((r - au) * eu + (z - az) * ez) / len2;
+            s = s < 0 ? 0 : (s > 1 ? 1 : s);
+            const Real gu = r - (au + s * eu), gz = z - (az + s * ez);
+            const Real dist2 = gu * gu + gz * gz;
+            if (dist2 < best) {
+                best = dist2, hu = gu, hz = gz;
+                const Real len = std::sqrt(len2);
+                nu = -ez / len, nz = eu / len;  // left normal: out of the base
+            }
+        }
+    if (!(best < 1e299)) return {0, 0, 0};
+    const Real dist = std::sqrt(best);
+    // Outside the base where the sphere is above the profile's height there (at a vertex the
+    // nearest edge's normal alone cannot tell).
+    const Real w = r - std::floor(r / b.period) * b.period;
+    bool outside = true;
+    for (int e = 0; e < b.n_edges; ++e) {
+        const Real eu = b.step_u[e] * b.count[e];
+        if (b.count[e] == 0 || !(eu > 0) || w < b.start_u[e] || w > b.start_u[e] + eu) continue;
+        outside = z > b.start_z[e] + (w - b.start_u[e]) / eu * (b.step_z[e] * b.count[e]);
+        break;
+    }
+    if (outside && dist >= rc) return {0, 0, 0};
+    // Outside: along the shortest way to the surface; below it: back out along the nearest
+    // edge's outward normal.
+    Real ou = nu, oz = nz, overlap = rc + dist;
+    if (outside) {
+        if (dist > 0) ou = hu / dist, oz = hz / dist;
+        overlap = rc - dist;
+    }
+    const Vec3 n{ou * cx, ou * cy, oz};
+    if (tally) tally->add(p.k_n, overlap, d);
+    return contact_force<Damping, false>(n, overlap, v_rel, p);
+}
 
 /// Force on a sphere (centre x, velocity v, diameter d) at time t from every rod within
 /// r_c = range (d + d_rod) / 2, acting in the plane normal to the rod (overlap repulsion and
@@ -84,6 +138,7 @@ EMERGENT_HD inline Vec3 rod_base_force(const RodLattice& b, const GranularPair& 
                 if (tally) tally->add(p.k_n, reach - dist, 0.5 * (d + d_rod));
             }
         }
+    if (b.backing) f += backing_force<Damping>(b, p, range, r, z, cx, cy, v - base_velocity, d, first, last, tally);
     return f;
 }
 

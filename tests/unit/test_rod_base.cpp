@@ -159,3 +159,49 @@ TEST(RodBase, BadProfilesAreRefusedNamingTheProblem) {
     b.rod_spacing = 0;
     EXPECT_THROW(force::rod_lattice(b), InputError);
 }
+
+TEST(RodBase, BackingActsOnlyOnGrainsPressedDeeperThanTheRodsLetThem) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u01(0, 1);
+    for (bool rings : {false, true}) {
+        RodBase b = sawtooth(1.0, false, rings);
+        const force::RodLattice bare = force::rod_lattice(b);
+        b.backing = true;
+        const force::RodLattice backed = force::rod_lattice(b);
+        int same = 0, pushed_out = 0;
+        for (int k = 0; k < 4000; ++k) {
+            const double u = 1 + 30 * u01(rng), z = -2 + 6 * u01(rng), d = 0.9 + 0.6 * u01(rng);
+            const Vec3 x = rings ? Vec3{u, 0, z} : Vec3{u, 1, z};
+            const Vec3 v{0, 0, 0};
+            // Height of the profile at u (gentle edge from 0 to 3 over each period of 13.5).
+            const double w = u - std::floor(u / 13.5) * 13.5, profile = 3 * w / 13.5;
+            // The distance to the profile's nearest point, by brute force over its polyline.
+            double dist = 1e300;
+            for (int m = -1; m <= 3; ++m)
+                for (int j = 0; j <= 2000; ++j) {
+                    const double s = j / 2000.0;
+                    const double pts[2][2] = {{m * 13.5 + s * 13.5, 3 * s}, {(m + 1) * 13.5, 3 * (1 - s)}};
+                    for (const auto& q : pts) dist = std::min(dist, std::hypot(u - q[0], z - q[1]));
+                }
+            const double rc = 0.5 * kRange * d;
+            const Vec3 f0 = force::rod_base_force<true>(bare, kContact, kRange, 0.2, x, v, d, 0, nullptr);
+            const Vec3 f1 = force::rod_base_force<true>(backed, kContact, kRange, 0.2, x, v, d, 0, nullptr);
+            if (z > profile && dist > rc + 1e-3) {
+                // Farther from the surface than its reach: the rods alone.
+                EXPECT_EQ(f1.x, f0.x);
+                EXPECT_EQ(f1.z, f0.z);
+                ++same;
+            } else if (z < profile - 0.05 && w > 0.5 &&
+                       (profile - z) * 13.5 / std::hypot(13.5, 3.0) < 13.5 - w) {
+                // Below the gentle edge, nearer to it than to the steep one: pushed back out
+                // through it, up and against the slope.
+                const Vec3 extra = f1 - f0;
+                EXPECT_GT(extra.z, 0) << "at u " << u << " z " << z;
+                EXPECT_GT(std::hypot(extra.x, extra.z), kContact.k_n * rc * 0.99);
+                ++pushed_out;
+            }
+        }
+        EXPECT_GT(same, 1000);
+        EXPECT_GT(pushed_out, 300);
+    }
+}
