@@ -39,7 +39,10 @@ PY
 "$exe" run vibrated-sawtooth --preset tiny --set steps=5000 --set sample_every=250 \
   --set slot_ends=walls --set output.every=2500 --set progress_interval=0 -o "$dir/vs" >/dev/null
 "$scripts/plot_vibrated_sawtooth" "$dir/vs" "$dir/vs/fig" >/dev/null
-for png in "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" \
+"$exe" run vibrated-sawtooth --preset tiny --set steps=5000 --set sample_every=250 \
+  --set slot_ends=walls --set seed=2 --set progress_interval=0 -o "$dir/vs2" >/dev/null
+"$scripts/plot_sawtooth_seeds" "$dir/vs/seeds.png" "$dir/vs" "$dir/vs2" >/dev/null
+for png in "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
            "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
            "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
