@@ -15,6 +15,8 @@ cd "$(dirname "$0")/.."
 cycles=${1:-300}
 ranks=${2:-2}
 out=${3:-benchmarks/logs/sawtooth_flux_map}
+case $cycles in ''|*[!0-9]*|0) echo "sawtooth_flux_map.sh: CYCLES='$cycles' must be a positive integer" >&2; exit 2 ;; esac
+case $ranks in ''|*[!0-9]*|0) echo "sawtooth_flux_map.sh: RANKS='$ranks' must be a positive integer" >&2; exit 2 ;; esac
 . benchmarks/common.sh
 mkdir -p "$out"
 # Amplitude for a given Gamma = (2 pi f)^2 a / g at f = 0.4, g = 5.

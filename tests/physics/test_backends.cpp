@@ -43,6 +43,23 @@ StepTraffic count_traffic(Simulation& sim, int steps) {
 
 }  // namespace
 
+/// The largest difference between two runs' forces on the same particle (matched by id), and
+/// the largest force: (difference, scale).
+std::pair<double, double> force_difference(const Simulation& a, const Simulation& b) {
+    std::map<std::int64_t, Vec3> by_id;
+    const ParticleStore& s = a.particles();
+    for (std::size_t i = 0; i < s.n_owned(); ++i) by_id[s.id[i]] = s.force[i];
+    const ParticleStore& t = b.particles();
+    EXPECT_EQ(t.n_owned(), s.n_owned());
+    double worst = 0, scale = 0;
+    for (std::size_t i = 0; i < t.n_owned(); ++i) {
+        const Vec3 d = t.force[i] - by_id.at(t.id[i]);
+        worst = std::max(worst, std::sqrt(dot(d, d)));
+        scale = std::max(scale, std::sqrt(dot(t.force[i], t.force[i])));
+    }
+    return {worst, scale};
+}
+
 TEST(BackendTraffic, HostBackendMovesNothing) {
     auto sim = make_scene(MPI_COMM_SELF, "lj-fluid", {"n_cells=4", "backend=host"});
     const exec::Transfers before = exec::transfers();
@@ -94,17 +111,7 @@ TEST(BackendForces, FullListOnTheBackendMatchesTheHostsHalfList) {
     const ThermoSample a = half->measure(), b = full->measure();
     EXPECT_NEAR(a.potential, b.potential, 1e-12 * std::abs(a.potential));
     EXPECT_NEAR(a.pressure, b.pressure, 1e-11 * std::abs(a.pressure));
-    std::map<std::int64_t, Vec3> by_id;
-    const ParticleStore& s = std::as_const(*half).particles();
-    for (std::size_t i = 0; i < s.n_owned(); ++i) by_id[s.id[i]] = s.force[i];
-    const ParticleStore& t = std::as_const(*full).particles();
-    ASSERT_EQ(t.n_owned(), s.n_owned());
-    double worst = 0, scale = 0;
-    for (std::size_t i = 0; i < t.n_owned(); ++i) {
-        const Vec3 d = t.force[i] - by_id.at(t.id[i]);
-        worst = std::max(worst, std::sqrt(dot(d, d)));
-        scale = std::max(scale, std::sqrt(dot(t.force[i], t.force[i])));
-    }
+    const auto [worst, scale] = force_difference(*half, *full);
     // 100 steps of chaotic dynamics first amplify the layouts' round-off difference (~1e-16
     // per step, Lyapunov time ~0.1 tau: 0.5 tau here, ~1e2 growth): still below 1e-11.
     std::printf("half vs full list after 100 steps: largest force difference %.3g of %.3g\n", worst, scale);
@@ -150,17 +157,7 @@ TEST(BackendForces, GranularFullListMatchesTheHostsHalfList) {
     ASSERT_GT(a.max_overlap, 0) << "no contacts yet: the comparison would test nothing";
     EXPECT_NEAR(a.max_overlap, b.max_overlap, 1e-9);
     EXPECT_NEAR(a.potential, b.potential, 1e-9 * std::abs(a.potential));
-    std::map<std::int64_t, Vec3> by_id;
-    const ParticleStore& s = std::as_const(*half).particles();
-    for (std::size_t i = 0; i < s.n_owned(); ++i) by_id[s.id[i]] = s.force[i];
-    const ParticleStore& t = std::as_const(*full).particles();
-    ASSERT_EQ(t.n_owned(), s.n_owned());
-    double worst = 0, scale = 0;
-    for (std::size_t i = 0; i < t.n_owned(); ++i) {
-        const Vec3 d = t.force[i] - by_id.at(t.id[i]);
-        worst = std::max(worst, std::sqrt(dot(d, d)));
-        scale = std::max(scale, std::sqrt(dot(t.force[i], t.force[i])));
-    }
+    const auto [worst, scale] = force_difference(*half, *full);
     std::printf("granular half vs full list: largest force difference %.3g of %.3g\n", worst, scale);
     EXPECT_LT(worst, 1e-9 * scale);
 }

@@ -205,3 +205,25 @@ TEST(RodBase, BackingActsOnlyOnGrainsPressedDeeperThanTheRodsLetThem) {
         EXPECT_GT(pushed_out, 300);
     }
 }
+
+TEST(RodBase, CylinderWallPushesInwardOnlyWithinReach) {
+    // A sphere of diameter 1 at distance r from the axis of a wall of radius 10: contact when
+    // 10 - r < range / 2, force k_n (range/2 - (10 - r)) toward the axis (no damping at rest).
+    for (double r : {9.0, 9.6, 9.9, 10.2}) {
+        const Vec3 x{r * std::cos(0.7), r * std::sin(0.7), 3};
+        const Vec3 v{0, 0, 0};
+        const Real d = 1;
+        Vec3 f{0, 0, 0};
+        const force::CylinderWallForce<false, true> wall{&x, &v, &d, &f, 10, kRange, kContact};
+        wall(0);
+        const double overlap = 0.5 * kRange - (10 - r);
+        if (overlap <= 0) {
+            EXPECT_EQ(dot(f, f), 0) << r;
+        } else {
+            EXPECT_NEAR(std::sqrt(dot(f, f)), kContact.k_n * overlap, 1e-9) << r;
+            EXPECT_NEAR(f.x * std::sin(0.7) - f.y * std::cos(0.7), 0, 1e-9);  // radial only
+            EXPECT_LT(f.x * x.x + f.y * x.y, 0);                                // inward
+            EXPECT_EQ(f.z, 0);
+        }
+    }
+}
