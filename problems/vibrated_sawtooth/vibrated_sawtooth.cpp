@@ -50,6 +50,10 @@ public:
             width_ = c.real("width");
         }
         check();
+        // Masses follow the nominal volumes (unit mass for the small grain).
+        const double ratio = d_big_ / d_small_;
+        mass_[kSmall] = 1.0;
+        mass_[kBig] = ratio * ratio * ratio;
         const double cycle_time = 1.0 / frequency_;
         const double start = c.integer("equilibration_steps") * c.real("dt");
         for (auto* a : {&flux_, &flux_small_, &flux_big_}) *a = CycleAverage(cycle_time, start);
@@ -82,9 +86,7 @@ public:
         // A layer spread over the floor: split the floor, not the empty space above it.
         const bool split[3] = {true, true, false};
         sim.set_box(box, split);
-        // Masses follow the nominal volumes (unit mass for the small grain).
-        const double ratio = d_big_ / d_small_;
-        sim.set_species_masses({1.0, ratio * ratio * ratio});
+        sim.set_species_masses({mass_[kSmall], mass_[kBig]});
         const GranularPair contact{c_.real("k_n"), c_.real("gamma_n"), 0, 0};
         GranularSettings g;
         g.n_species = 2;
@@ -151,10 +153,9 @@ public:
     void on_equilibrated(Simulation& sim) override {
         if (!periodic_) return;
         ParticleStore& p = sim.particles();
-        const double ratio = d_big_ / d_small_, mass[2] = {1.0, ratio * ratio * ratio};
         double local[2] = {0, 0}, all[2];
         for (std::size_t i = 0; i < p.n_owned(); ++i) {
-            const double m = mass[p.species[i] == kBig ? 1 : 0];
+            const double m = mass_[p.species[i] == kBig ? kBig : kSmall];
             local[0] += m * p.velocity[i].x;
             local[1] += m;
         }
@@ -421,6 +422,7 @@ private:
     bool rings_ = false, periodic_ = false;
     double period_, height_, d_small_, d_big_, spread_, amplitude_, frequency_, big_fraction_;
     double u_max_ = 0, width_ = 0;
+    double mass_[2] = {1.0, 1.0};  ///< per species, set once
     CycleAverage flux_, flux_small_, flux_big_;
     std::vector<double> profile_sum_[2], profile_count_[2];
     double last_sample_time_ = -1;

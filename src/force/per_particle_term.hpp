@@ -53,6 +53,10 @@ protected:
     /// The term's forces on p's owned particles at time `time`; when `sample`, its energy and
     /// largest overlap too (add_sampled).
     virtual void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const = 0;
+    /// Runs the per-particle functor over p's owned particles, then adds what a sampling pass
+    /// left (its functor wrote p.energy and p.overlap).
+    template <bool Sample, class Functor>
+    static void launch(const BackendParticles& p, const Functor& f, ForceSums& sums);
 };
 
 /// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.
@@ -61,6 +65,12 @@ inline void add_sampled(const BackendParticles& p, std::size_t n, bool virial, F
     if (virial) sums.virial += exec::transform_sum<double>(p.target, n, exec::ElementOf<Real>{p.virial});
     sums.max_overlap = std::max(
         sums.max_overlap, exec::transform_max(p.target, n, 0.0, exec::ElementOf<Real>{p.overlap}));
+}
+
+template <bool Sample, class Functor>
+void PerParticleWall::launch(const BackendParticles& p, const Functor& f, ForceSums& sums) {
+    exec::for_each(p.target, p.n_owned, f);
+    if constexpr (Sample) add_sampled(p, p.n_owned, false, sums);
 }
 
 }  // namespace emergent::force

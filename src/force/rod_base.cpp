@@ -33,11 +33,10 @@ private:
         ForceSums& sums;
         template <bool Sample, bool Damping>
         void operator()() const {
-            exec::for_each(p.target, p.n_owned,
-                           force::RodBaseForce<Sample, Damping>{p.position, p.velocity, p.diameter,
-                                                                p.force, t.lattice_, t.p_, t.range_,
-                                                                t.d_rod_, time, p.energy, p.overlap});
-            if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
+            launch<Sample>(p, force::RodBaseForce<Sample, Damping>{p.position, p.velocity, p.diameter,
+                                                                   p.force, t.lattice_, t.p_, t.range_,
+                                                                   t.d_rod_, time, p.energy, p.overlap},
+                           sums);
         }
     };
     void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const override {
@@ -63,11 +62,10 @@ private:
         ForceSums& sums;
         template <bool Sample, bool Damping>
         void operator()() const {
-            exec::for_each(p.target, p.n_owned,
-                           force::CylinderWallForce<Sample, Damping>{p.position, p.velocity, p.diameter,
-                                                                     p.force, t.radius_, t.range_, t.p_,
-                                                                     p.energy, p.overlap});
-            if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
+            launch<Sample>(p, force::CylinderWallForce<Sample, Damping>{p.position, p.velocity, p.diameter,
+                                                                        p.force, t.radius_, t.range_, t.p_,
+                                                                        p.energy, p.overlap},
+                           sums);
         }
     };
     void add(const BackendParticles& p, double, bool sample, ForceSums& sums) const override {

@@ -62,11 +62,11 @@ private:
         ForceSums& sums;
         template <bool Sample, bool Damping, bool Friction>
         void operator()() const {
-            exec::for_each(p.target, p.n_owned,
+            launch<Sample>(p,
                            RoughWallForce<Lattice, Sample, Damping, Friction>{
                                p.position, p.velocity, p.diameter, p.force, w.lattice_, w.p_,
-                               w.range_, w.d_wall_, time, p.energy, p.overlap});
-            if constexpr (Sample) force::add_sampled(p, p.n_owned, false, sums);
+                               w.range_, w.d_wall_, time, p.energy, p.overlap},
+                           sums);
         }
     };
     void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const override {
