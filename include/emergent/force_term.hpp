@@ -96,6 +96,20 @@ struct GranularSettings {
 };
 std::unique_ptr<ForceTerm> make_granular_contacts(const GranularSettings& settings);
 
+/// Soft spheres with attraction sites (the capsid model, paper eq. 6). Species below
+/// `first_site` are soft spheres: WCA repulsion (epsilon = sigma = 1, cut and shifted at
+/// 2^(1/6)) between every two of them. Species first_site + k are attraction sites of type k,
+/// points without volume that meet only their partner type, partner[k] (mutual), with
+/// u_a = e (1/r_a^2 + r^2/r_h^4 - 2/r_h^2) for r < r_h and e (1/r_a^2 - 1/r^2) for
+/// r_h <= r < r_a (e = `epsilon`, r_a = `range`, r_h = `harmonic_range`; 0 beyond r_a, where the
+/// force drops by 2e/r_a^3, as published). Constituents of one rigid body never interact.
+struct SiteAttraction {
+    int first_site = 1;
+    std::vector<int> partner;
+    double epsilon = 0.09, range = 3, harmonic_range = 0.3;
+};
+std::unique_ptr<ForceTerm> make_soft_spheres_and_sites(const SiteAttraction& sites);
+
 /// A uniform acceleration field (gravity): f = m g on every particle; u = -m g.x.
 std::unique_ptr<ForceTerm> make_uniform_field(const Vec3& acceleration);
 

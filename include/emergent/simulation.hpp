@@ -97,6 +97,14 @@ struct ThermoSample {
     double max_overlap = -1;
 };
 
+/// Kinetic energy by kind of motion, summed over all ranks: free particles, and rigid bodies'
+/// translation and rotation. With the degrees of freedom of each (3 per free particle, 3 + 3
+/// per body) it gives their separate temperatures.
+struct KineticParts {
+    double free = 0, translational = 0, rotational = 0;
+    long long n_free = 0, n_bodies = 0;
+};
+
 /// Wall-clock seconds spent in each part of the step (this rank).
 struct PhaseTimes {
     double neighbour = 0;  ///< migration, sorting, ghost build, cell and Verlet lists
@@ -121,8 +129,13 @@ public:
     /// Sets the region and partitions it; split_axis[d] = false keeps axis d on one rank.
     /// A wedge region (box.wedge) needs x and y bounded; they are then never split.
     void set_box(const Box& box, const bool split_axis[3] = nullptr);
+    /// Mass per species; 0 makes a species of points without inertia (attraction sites),
+    /// allowed only as constituents of rigid bodies.
     void set_species_masses(const std::vector<double>& masses);
     void add_force(std::unique_ptr<ForceTerm> term);
+    /// A global thermostat. With rigid bodies it acts on the free particles alone (an explicit
+    /// solvent bath), rescaling their velocities about their mean; the bodies reach the bath's
+    /// temperature through collisions only.
     void set_thermostat(std::unique_ptr<Thermostat> thermostat);
     /// Adds a boundary rule (applied after each drift, in the order added); the simulation
     /// keeps it, the scene may keep the returned pointer to read the rule's exchange.
@@ -150,8 +163,9 @@ public:
     int add_body_kind(const std::vector<Vec3>& positions, const std::vector<int>& species,
                       const std::vector<double>& diameters);
     /// Adds a rigid body if its centre of mass lies in this rank's domain. `orientation`
-    /// rotates the kind's principal frame into space; `omega` is the angular velocity (space
-    /// frame). Its spheres get particle ids first_particle_id, first_particle_id + 1, ...
+    /// rotates the frame the kind's spheres were given in into space (the identity: as
+    /// given); `omega` is the angular velocity (space frame). Its spheres get particle ids
+    /// first_particle_id, first_particle_id + 1, ...
     void add_body(int kind, const Vec3& com, const Quat& orientation, const Vec3& velocity,
                   const Vec3& omega, std::int64_t id, std::int64_t first_particle_id);
     bool has_bodies() const;
@@ -171,6 +185,8 @@ public:
     /// Global thermodynamic state; potential energy and pressure refer to the last step taken
     /// with sample = true (or to initialise()).
     ThermoSample measure() const;
+    /// Kinetic energy of free particles and of bodies' translation and rotation. Collective.
+    KineticParts kinetic_parts() const;
 
     // --- guards ---
     /// Checks that every position, velocity and force is finite and within `limits`; throws

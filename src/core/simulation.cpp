@@ -128,8 +128,6 @@ struct Simulation::Engine {
         grid->require_width(ghost_width());
         cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff(),
                     settings.cell_subdivisions);
-        if (bodies() && thermostat)
-            throw InputError("a thermostat with rigid bodies is not supported yet");
         if (bodies() && !wall_layers.empty())
             throw InputError("wall-layer thermostats act on free particles only");
         if (bodies() && !boundaries.empty())
@@ -383,6 +381,30 @@ struct Simulation::Engine {
     void apply_thermostat() {
         if (!thermostat) return;
         PhaseTimer timer(times.integrate);
+        if (bodies()) {
+            // With rigid bodies the thermostat acts on the free particles alone (an explicit
+            // solvent bath), about their mean velocity; the bodies take the bath's temperature
+            // through collisions only.
+            backend_reads(kVelocity | kSpecies | kBody);
+            const integrate::MassMotion local = exec::transform_sum<integrate::MassMotion>(
+                target, store.n_owned(),
+                integrate::FreeMassMotion{data(kVelocity, store.velocity), data(kSpecies, store.species),
+                                          masses(), data(kBody, store.body)});
+            double sums[5] = {local.mass, local.kinetic, local.momentum.x, local.momentum.y,
+                              local.momentum.z};
+            MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
+            if (n_free < 2 || !(sums[0] > 0)) return;
+            const Vec3 momentum{sums[2], sums[3], sums[4]};
+            const double relative = sums[1] - 0.5 * dot(momentum, momentum) / sums[0];
+            const double factor =
+                thermostat->scale_factor(relative, 3.0 * double(n_free) - 3.0, step, settings.dt);
+            exec::for_each(target, store.n_owned(),
+                           integrate::ScaleFreeAboutMean{data(kVelocity, store.velocity),
+                                                         data(kBody, store.body),
+                                                         (1 / sums[0]) * momentum, factor});
+            backend_wrote(kVelocity);
+            return;
+        }
         const double kinetic = decomp::sum(comm, local_kinetic());
         const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
         exec::for_each(target, store.n_owned(),
@@ -455,8 +477,9 @@ void Simulation::set_species_masses(const std::vector<double>& masses) {
     engine_->mass.assign(masses.begin(), masses.end());
     engine_->inverse_mass.clear();
     for (double m : masses) {
-        if (!(m > 0)) throw InputError("species mass " + std::to_string(m) + " must be > 0");
-        engine_->inverse_mass.push_back(1.0 / m);
+        // Mass 0: points without inertia (attraction sites), only as constituents of bodies.
+        if (!(m >= 0)) throw InputError("species mass " + std::to_string(m) + " must be >= 0");
+        engine_->inverse_mass.push_back(m > 0 ? 1.0 / m : 0.0);
     }
 }
 
@@ -508,6 +531,9 @@ void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::in
         if (x[d] < lo[d] || x[d] >= hi[d]) return;
     if (species < 0 || species >= static_cast<int>(e.mass.size()))
         throw InputError("particle species " + std::to_string(species) + " has no mass set");
+    if (!(e.mass[std::size_t(species)] > 0))
+        throw InputError("particle species " + std::to_string(species) +
+                         " has mass 0: such points exist only as constituents of rigid bodies");
     if (!(diameter > 0)) throw InputError("particle diameter " + std::to_string(diameter) + " must be > 0");
     e.host_reads(kAllFields);
     e.store.add_owned(x, v, species, id, diameter);
@@ -776,6 +802,21 @@ long long Simulation::n_global() const { return engine_->n_global; }
 long long Simulation::step_index() const { return engine_->step; }
 double Simulation::time() const { return engine_->time; }
 double Simulation::dt() const { return engine_->settings.dt; }
+KineticParts Simulation::kinetic_parts() const {
+    const Engine& e = *engine_;
+    e.backend_reads(kVelocity | kSpecies | kBody);
+    const double free = exec::transform_sum<double>(
+        e.target, e.store.n_owned(),
+        integrate::FreeKineticEnergy{e.data(kVelocity, e.store.velocity), e.data(kSpecies, e.store.species),
+                                     e.masses(), e.store.has_rigid_fields() ? e.data(kBody, e.store.body) : nullptr});
+    const Vec3 bodies = e.bodies() ? e.rigid.kinetic_parts() : Vec3{0, 0, 0};
+    double sums[3] = {free, bodies.x, bodies.y};
+    MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, e.comm);
+    KineticParts k{sums[0], sums[1], sums[2], e.bodies() ? e.n_free : e.n_global,
+                   e.bodies() ? e.n_bodies : 0};
+    return k;
+}
+
 long long Simulation::rebuilds() const { return engine_->rebuilds; }
 double Simulation::degrees_of_freedom() const { return engine_->dof(); }
 const std::vector<double>& Simulation::species_masses() const { return engine_->mass; }

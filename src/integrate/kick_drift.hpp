@@ -57,4 +57,18 @@ struct ScaleVelocity {
     EMERGENT_HD void operator()(std::size_t i) const { v[i] *= factor; }
 };
 
+/// v = u + factor (v - u) for free particles (constituents of bodies are left alone): a
+/// thermostat acting on a bath of free particles about their mean velocity u, so that their
+/// momentum, and the total, stay as they are.
+struct ScaleFreeAboutMean {
+    Vec3* v;
+    const std::int64_t* body;
+    Vec3 mean;
+    Real factor;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        if (body[i] >= 0) return;
+        v[i] = mean + factor * (v[i] - mean);
+    }
+};
+
 }  // namespace emergent::integrate

@@ -52,6 +52,32 @@ struct FreeMomenta {
     }
 };
 
+/// Mass, momentum and kinetic energy of some particles.
+struct MassMotion {
+    double mass = 0, kinetic = 0;
+    Vec3 momentum{0, 0, 0};
+    EMERGENT_HD MassMotion& operator+=(const MassMotion& o) {
+        mass += o.mass;
+        kinetic += o.kinetic;
+        momentum += o.momentum;
+        return *this;
+    }
+};
+
+/// A free particle's MassMotion (zero for a constituent of a rigid body; body may be null).
+struct FreeMassMotion {
+    const Vec3* v;
+    const int* species;
+    const double* mass;
+    const std::int64_t* body;
+
+    EMERGENT_HD MassMotion operator()(std::size_t i) const {
+        if (body && body[i] >= 0) return MassMotion{};
+        const double m = mass[species[i]];
+        return MassMotion{m, 0.5 * m * dot(v[i], v[i]), m * v[i]};
+    }
+};
+
 /// True for a particle the guards must stop the run for: a non-finite position, velocity or
 /// force, or a force above the bound (max_force_sq > 0).
 struct UnfitState {

@@ -115,14 +115,23 @@ struct BodyForceAndTorque {
     }
 };
 
-/// Body b's kinetic energy, translation plus rotation.
-struct BodyKinetic {
+/// Body b's translational (x) and rotational (y) kinetic energy.
+struct BodyKineticParts {
     BodyState s;
     FrameTable frames;
-    EMERGENT_HD double operator()(std::size_t b) const {
+    EMERGENT_HD Vec3 operator()(std::size_t b) const {
         const int k = s.kind[b];
         const Rotor r{s.q[b], s.p[b], frames.inertia[k]};
-        return 0.5 * frames.mass[k] * dot(s.v[b], s.v[b]) + rotational_energy(r);
+        return {0.5 * frames.mass[k] * dot(s.v[b], s.v[b]), rotational_energy(r), 0.0};
+    }
+};
+
+/// Body b's kinetic energy, translation plus rotation.
+struct BodyKinetic {
+    BodyKineticParts parts;
+    EMERGENT_HD double operator()(std::size_t b) const {
+        const Vec3 e = parts(b);
+        return e.x + e.y;
     }
 };
 

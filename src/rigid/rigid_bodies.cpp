@@ -22,6 +22,9 @@ int RigidBodies::add_kind(const BodyKind& kind, const std::vector<double>& speci
     if (kind.positions.empty() || kind.species.size() != kind.positions.size() ||
         kind.diameters.size() != kind.positions.size())
         throw InputError("rigid body: each constituent needs a position, species and diameter");
+    double mass = 0;
+    for (double m : shape.masses) mass += m;
+    if (!(mass > 0)) throw InputError("rigid body: its constituents' masses sum to 0");
     frames_.push_back(principal_frame(shape));
     const BodyFrame& f = frames_.back();
     frame_mass_.push_back(f.mass);
@@ -116,7 +119,11 @@ void RigidBodies::kick(ParticleStore& store, double kick) {
 }
 
 double RigidBodies::kinetic() const {
-    return exec::transform_sum<double>(exec::Host{}, bodies_.n_owned(), BodyKinetic{state(), frame_table()});
+    return exec::transform_sum<double>(exec::Host{}, bodies_.n_owned(), BodyKinetic{{state(), frame_table()}});
+}
+
+Vec3 RigidBodies::kinetic_parts() const {
+    return exec::transform_sum<Vec3>(exec::Host{}, bodies_.n_owned(), BodyKineticParts{state(), frame_table()});
 }
 
 Vec3 RigidBodies::momentum() const {

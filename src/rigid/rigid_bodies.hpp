@@ -60,6 +60,8 @@ public:
     /// Kinetic energy (translation + rotation), momentum, angular momentum about the origin
     /// (unwrapped centres) of the owned bodies; and their degrees of freedom (6 each).
     double kinetic() const;
+    /// The same split: translational (x) and rotational (y).
+    Vec3 kinetic_parts() const;
     Vec3 momentum() const;
     Vec3 angular_momentum(const Vec3& box_length) const;
 

@@ -1,0 +1,60 @@
+// SPDX-License-Identifier: MIT
+// Bonds and clusters of rigid bodies from their attraction sites (the capsid model's
+// bookkeeping; it exerts no force).
+#pragma once
+
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "emergent/box.hpp"
+#include "emergent/vec3.hpp"
+
+namespace emergent {
+
+class Simulation;
+
+/// Bodies i and j are bonded when, for one contact face of i, every site of that face lies
+/// within `bond_range` of j's site of the partner type (paper: all four site pairs of two faces
+/// within r_b = 0.5). Site type k is species first_site + k.
+struct SiteBondRule {
+    int first_site = 1;
+    std::vector<int> partner;
+    std::vector<std::vector<int>> faces;
+    double bond_range = 0.5;
+};
+
+/// One site: where it is, its type (not species) and the id of its body.
+struct SiteRecord {
+    Vec3 x;
+    int type = 0;
+    std::int64_t body = -1;
+};
+
+/// The bond graph of every body that carries sites, and its connected components (clusters).
+struct BondCensus {
+    std::vector<std::int64_t> bodies;  ///< body ids, ascending
+    std::vector<std::pair<int, int>> bonds;  ///< indices into `bodies`, first < second, sorted
+    std::vector<int> degree;      ///< bonds per body
+    std::vector<int> cluster;     ///< cluster index per body (clusters ordered by first member)
+    std::vector<int> cluster_size;  ///< members per cluster
+
+    /// Clusters of `size` members in which every member has `degree` bonds (a closed shell:
+    /// 60 members of degree 5).
+    int complete_clusters(int size, int degree) const;
+    int largest_cluster() const;
+    /// Fraction of the bodies in clusters whose size lies in each group: group g holds sizes
+    /// (upper[g-1], upper[g]] with upper[-1] = 0 (e.g. {1, 5, 50, 59, 60}).
+    std::vector<double> mass_fractions(const std::vector<int>& upper) const;
+};
+
+/// The bonds among the given sites; distances by the nearest image along periodic axes of
+/// `box`. Every body that has a site is listed, bonded or not.
+BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondRule& rule,
+                           const Box& box);
+
+/// The same for a running simulation: gathers the sites of every rank (collective); the result
+/// is the same on every rank.
+BondCensus site_bond_census(const Simulation& sim, const SiteBondRule& rule);
+
+}  // namespace emergent

@@ -1,0 +1,276 @@
+// SPDX-License-Identifier: MIT
+// Scene `capsid-assembly`: rigid capsomers of soft spheres with attraction sites on their
+// lateral faces, in an explicit solvent of the same soft spheres, self-assemble into closed
+// 60-particle shells (paper: "Supramolecular self-assembly").
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+#include "emergent/capsomer.hpp"
+#include "emergent/error.hpp"
+#include "emergent/problem.hpp"
+#include "emergent/random.hpp"
+#include "emergent/simulation.hpp"
+#include "emergent/site_bonds.hpp"
+#include "emergent/thermostat.hpp"
+
+namespace emergent::problems {
+
+namespace {
+
+constexpr int kSolvent = 0, kSphere = 1, kFirstSite = 2;
+constexpr int kShell = 60, kFullDegree = 5;
+/// Cluster size groups of the mass fractions (paper): 1, 2-5, 6-50, 51-59, 60.
+const std::vector<int> kGroups{1, 5, 50, 59, 60};
+
+double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
+
+/// A uniformly random rotation (Shoemake): a normalised 4-vector of Gaussians.
+Quat random_rotation(std::uint64_t seed, std::uint64_t id) {
+    return normalized(Quat{gaussian(seed, id, 20), gaussian(seed, id, 21), gaussian(seed, id, 22),
+                           gaussian(seed, id, 23)});
+}
+
+class CapsidAssembly final : public Problem {
+public:
+    explicit CapsidAssembly(const Config& c) : c_(c), design_(pw_capsomer(c.real("edge"))) {
+        n_capsomers_ = c.integer("capsomers");
+        const double p = c.real("particle_fraction");
+        n_total_ = std::llround(double(n_capsomers_) / p);
+        n_solvent_ = n_total_ - n_capsomers_;
+        length_ = std::cbrt(double(n_total_) / c.real("density"));
+        const std::string start = c.text("start");
+        shell_members_ = start == "shell" ? kShell : (start == "open_shell" ? kShell - 1 : 0);
+        if (n_capsomers_ < shell_members_)
+            throw InputError(c.scene() + ": start=" + start + " needs capsomers >= " +
+                             std::to_string(shell_members_) + ", got " + std::to_string(n_capsomers_));
+        // The centre of mass (all spheres weigh the same) and how far spheres reach from it.
+        centre_ = Vec3{0, 0, 0};
+        for (const Vec3& s : design_.spheres) centre_ += s;
+        centre_ *= 1.0 / double(design_.spheres.size());
+        for (const Vec3& s : design_.spheres) reach_ = std::max(reach_, norm(s - centre_) + 0.5);
+        shell_outer_ = 0;
+        for (const Vec3& s : design_.spheres) shell_outer_ = std::max(shell_outer_, norm(s) + 0.5);
+        if (length_ < 2 * shell_outer_ + 4 * reach_ + 6.0)  // the shell and its images apart
+            throw InputError(c.scene() + ": a box of side " + std::to_string(length_) +
+                             " (capsomers=" + std::to_string(n_capsomers_) + ", particle_fraction=" +
+                             c.text("particle_fraction") + ", density=" + c.text("density") +
+                             ") is too small for a shell of outer radius " + std::to_string(shell_outer_));
+        rule_.first_site = kFirstSite;
+        rule_.partner = design_.partner;
+        rule_.faces = design_.faces;
+        rule_.bond_range = c.real("bond_range");
+    }
+
+    void build(Simulation& sim) override {
+        Box box;
+        box.lo = {0, 0, 0};
+        box.hi = {length_, length_, length_};
+        sim.set_box(box);
+        // Solvent mass 1; a capsomer weighs mass_ratio, shared by its spheres; sites weigh nothing.
+        std::vector<double> masses{1.0, c_.real("mass_ratio") / double(design_.spheres.size())};
+        masses.resize(kFirstSite + design_.sites.size(), 0.0);
+        sim.set_species_masses(masses);
+        SiteAttraction a;
+        a.first_site = kFirstSite;
+        a.partner = design_.partner;
+        a.epsilon = c_.real("attraction");
+        a.range = c_.real("attraction_range");
+        a.harmonic_range = c_.real("harmonic_range");
+        sim.add_force(make_soft_spheres_and_sites(a));
+        std::vector<Vec3> positions = design_.spheres;
+        positions.insert(positions.end(), design_.sites.begin(), design_.sites.end());
+        std::vector<int> species(design_.spheres.size(), kSphere);
+        std::vector<double> diameters(design_.spheres.size(), 1.0);
+        for (std::size_t k = 0; k < design_.sites.size(); ++k) {
+            species.push_back(kFirstSite + int(k));
+            diameters.push_back(0.0);  // a point
+        }
+        kind_ = sim.add_body_kind(positions, species, diameters);
+        sim.set_thermostat(make_bussi_thermostat(c_.real("temperature"), c_.real("thermostat_tau"),
+                                                 static_cast<std::uint64_t>(c_.integer("seed")) + 1));
+    }
+
+    ParticleEstimate expected_particles(const Simulation&) const override {
+        return {double(n_solvent_) + double(n_capsomers_) * double(design_.spheres.size() + design_.sites.size()),
+                "capsomers=" + c_.text("capsomers") + ", particle_fraction=" + c_.text("particle_fraction")};
+    }
+
+    void place_particles(Simulation& sim) override {
+        const auto seed = static_cast<std::uint64_t>(c_.integer("seed"));
+        const double T = c_.real("temperature");
+        const Vec3 middle{0.5 * length_, 0.5 * length_, 0.5 * length_};
+        std::vector<Vec3> com;
+        std::vector<Quat> turn;
+        const std::vector<Quat> group = icosahedral_rotations();
+        for (int k = 0; k < shell_members_; ++k) {
+            com.push_back(middle + rotate(group[std::size_t(k)], centre_));
+            turn.push_back(group[std::size_t(k)]);
+        }
+        // Monomers at random, apart from each other (no two spheres closer than a diameter)
+        // and, with a shell, outside it.
+        auto periodic = [&](Vec3 d) {
+            for (int k = 0; k < 3; ++k) d[k] -= length_ * std::nearbyint(d[k] / length_);
+            return d;
+        };
+        const double apart = 2 * reach_;
+        for (std::int64_t b = shell_members_, attempt = 0; b < n_capsomers_; ++attempt) {
+            if (attempt > 1000 * n_capsomers_ + 100000)
+                throw InputError(c_.scene() + ": no room for " + std::to_string(n_capsomers_) +
+                                 " capsomers at particle_fraction=" + c_.text("particle_fraction"));
+            const Vec3 x{length_ * uniform_open(seed, std::uint64_t(attempt), 1),
+                         length_ * uniform_open(seed, std::uint64_t(attempt), 2),
+                         length_ * uniform_open(seed, std::uint64_t(attempt), 3)};
+            if (shell_members_ > 0 && norm(periodic(x - middle)) < shell_outer_ + reach_ + 0.5) continue;
+            bool free = true;
+            for (std::size_t o = std::size_t(shell_members_); o < com.size() && free; ++o)
+                free = norm(periodic(x - com[o])) >= apart;
+            if (!free) continue;
+            com.push_back(x);
+            turn.push_back(random_rotation(seed, std::uint64_t(b)));
+            ++b;
+        }
+        // Solvent on a cubic lattice, fine enough that n_solvent points stay clear of every
+        // sphere (1 apart); those kept are chosen at random.
+        std::vector<Vec3> sphere_at;
+        for (std::size_t b = 0; b < com.size(); ++b)
+            for (const Vec3& s : design_.spheres)
+                sphere_at.push_back(com[b] + rotate(turn[b], s - centre_));
+        std::vector<Vec3> lattice;
+        for (int n = std::max(1, int(std::ceil(std::cbrt(double(n_solvent_))))); ; ++n) {
+            lattice.clear();
+            const double a = length_ / n;
+            // Bodies binned coarsely, so each point meets only the spheres near it.
+            const int m = std::max(1, int(length_ / (2 * reach_ + 1)));
+            std::vector<std::vector<std::size_t>> bins(std::size_t(m) * m * m);
+            auto bin_of = [&](const Vec3& x, int d) {
+                return ((int(std::floor(x[d] / length_ * m)) % m) + m) % m;
+            };
+            for (std::size_t b = 0; b < com.size(); ++b)
+                bins[std::size_t((bin_of(com[b], 0) * m + bin_of(com[b], 1)) * m + bin_of(com[b], 2))].push_back(b);
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j)
+                    for (int k = 0; k < n; ++k) {
+                        const Vec3 x{(i + 0.5) * a, (j + 0.5) * a, (k + 0.5) * a};
+                        bool clear = true;
+                        const int c[3] = {bin_of(x, 0), bin_of(x, 1), bin_of(x, 2)};
+                        for (int dx = -1; dx <= 1 && clear; ++dx)
+                            for (int dy = -1; dy <= 1 && clear; ++dy)
+                                for (int dz = -1; dz <= 1 && clear; ++dz) {
+                                    const int q = ((((c[0] + dx) % m + m) % m) * m + ((c[1] + dy) % m + m) % m) * m +
+                                                  ((c[2] + dz) % m + m) % m;
+                                    for (const std::size_t b : bins[std::size_t(q)])
+                                        for (std::size_t s = 0; s < design_.spheres.size() && clear; ++s)
+                                            clear = norm(periodic(x - sphere_at[b * design_.spheres.size() + s])) >= 1.0;
+                                }
+                        if (clear) lattice.push_back(x);
+                    }
+            if (std::int64_t(lattice.size()) >= n_solvent_) break;
+        }
+        std::vector<std::size_t> order(lattice.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::vector<std::uint64_t> key(lattice.size());
+        for (std::size_t i = 0; i < key.size(); ++i) key[i] = mix64(seed ^ (0x9e3779b97f4a7c15ULL * (i + 1)));
+        std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
+        order.resize(std::size_t(n_solvent_));
+        std::sort(order.begin(), order.end());
+        for (std::size_t s = 0; s < order.size(); ++s) {
+            const auto id = std::uint64_t(s);
+            const double speed = std::sqrt(T);  // solvent mass 1
+            sim.add_particle(lattice[order[s]],
+                             {speed * gaussian(seed, id, 4), speed * gaussian(seed, id, 5), speed * gaussian(seed, id, 6)},
+                             kSolvent, std::int64_t(id));
+        }
+        // Bodies at temperature T: translation by their mass, rotation by their mean moment.
+        const double mass = c_.real("mass_ratio"), m_sphere = mass / double(design_.spheres.size());
+        double moment = 0;
+        for (const Vec3& s : design_.spheres) moment += m_sphere * (2.0 / 3.0 * dot(s - centre_, s - centre_) + 0.1);
+        const std::int64_t per_body = std::int64_t(design_.spheres.size() + design_.sites.size());
+        for (std::size_t b = 0; b < com.size(); ++b) {
+            const auto id = std::uint64_t(n_solvent_) + b;
+            const double v = std::sqrt(T / mass), w = std::sqrt(T / moment);
+            sim.add_body(kind_, com[b], turn[b],
+                         {v * gaussian(seed, id, 4), v * gaussian(seed, id, 5), v * gaussian(seed, id, 6)},
+                         {w * gaussian(seed, id, 7), w * gaussian(seed, id, 8), w * gaussian(seed, id, 9)},
+                         std::int64_t(b), n_solvent_ + std::int64_t(b) * per_body);
+        }
+    }
+
+    Measures measures(Simulation& sim) override {
+        const BondCensus census = site_bond_census(sim, rule_);
+        int dimers = 0;
+        for (const int n : census.cluster_size) dimers += n == 2;
+        const KineticParts k = sim.kinetic_parts();
+        const double solvent_t = k.n_free > 0 ? 2 * k.free / (3.0 * double(k.n_free)) : 0;
+        const double nb = double(std::max<long long>(1, k.n_bodies));
+        last_shells_ = census.complete_clusters(kShell, kFullDegree);
+        last_largest_ = census.largest_cluster();
+        return {{"bonds", {double(census.bonds.size())}},
+                {"clusters", {double(census.cluster_size.size())}},
+                {"complete_shells", {double(last_shells_)}},
+                {"largest_cluster", {double(last_largest_)}},
+                {"dimers", {double(dimers)}},
+                {"mass_fractions", census.mass_fractions(kGroups)},
+                {"yield", {double(last_shells_ * kShell) / double(std::max<std::int64_t>(1, n_capsomers_))}},
+                {"solvent_temperature", {solvent_t}},
+                {"capsomer_temperature", {2 * k.translational / (3 * nb), 2 * k.rotational / (3 * nb)}}};
+    }
+
+    std::string progress_note(const Measures&) const override {
+        std::ostringstream s;
+        s << last_shells_ << " shells, largest cluster " << last_largest_;
+        return s.str();
+    }
+
+private:
+    Config c_;
+    Capsomer design_;
+    SiteBondRule rule_;
+    std::int64_t n_capsomers_ = 0, n_total_ = 0, n_solvent_ = 0;
+    int shell_members_ = 0, kind_ = -1;
+    double length_ = 0, reach_ = 0, shell_outer_ = 0;
+    Vec3 centre_{0, 0, 0};
+    int last_shells_ = 0, last_largest_ = 0;
+};
+
+ProblemInfo capsid_assembly_info() {
+    ProblemInfo info;
+    info.name = "capsid-assembly";
+    info.description = "rigid capsomers with attraction sites in an explicit solvent: closed 60-particle shells";
+    info.schema = run_schema();
+    info.schema.set_default("dt", "0.005").set_default("equilibration_steps", "0");
+    info.schema.integer("capsomers", 4752, 1, 1e8, "1", "number of capsomers N_p")
+        .real("particle_fraction", 0.022, 1e-6, 1, "1",
+              "p = N_p / N with N = capsomers + solvent atoms (each capsomer counted once)", true)
+        .real("density", 0.1, 1e-6, 1, "sigma^-3", "overall number density N / V", true)
+        .real("edge", 2.1, 1, 10, "sigma", "short edge a of the PW capsomer (outer face a, a, a, 2a)", true)
+        .real("mass_ratio", 15, 0, 1e6, "m", "capsomer mass / solvent atom mass", true)
+        .real("attraction", 0.09, 0, 10, "epsilon", "attraction strength e of the site pairs (eq. 6)")
+        .real("attraction_range", 3, 0.5, 10, "sigma", "r_a: the attraction's range", true)
+        .real("harmonic_range", 0.3, 0.01, 1, "sigma", "r_h: where the attraction becomes harmonic", true)
+        .real("bond_range", 0.5, 0.01, 2, "sigma",
+              "r_b: two faces are bonded when all four site pairs are closer (analysis only)")
+        .real("temperature", 1.0, 0, 1e4, "epsilon/k_B", "the solvent thermostat's temperature")
+        .real("thermostat_tau", 0.5, 0, 1e9, "tau", "relaxation time of the solvent's Bussi thermostat", true)
+        .choice("start", "monomers", {"monomers", "shell", "open_shell"},
+                "monomers: all capsomers apart; shell: one closed shell at the centre plus "
+                "monomers; open_shell: that shell less one capsomer (a 59-cluster) plus monomers");
+    info.schema.structural({"capsomers", "particle_fraction", "density", "edge", "mass_ratio",
+                            "attraction_range", "harmonic_range", "start"})
+        .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau"});
+    info.presets["tiny"] = {{"capsomers", "60"}, {"start", "shell"}, {"steps", "2000"},
+                            {"sample_every", "200"}};
+    info.presets["paper"] = {{"capsomers", "4752"}, {"steps", "320000000"}, {"sample_every", "50000"},
+                             {"output.every", "1000000"}, {"checkpoint_every", "1000000"},
+                             {"progress_interval", "300"}};
+    info.factory = [](const Config& c) { return std::make_unique<CapsidAssembly>(c); };
+    return info;
+}
+
+}  // namespace
+
+EMERGENT_REGISTER_PROBLEM(capsid_assembly_info);
+
+}  // namespace emergent::problems

@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: MIT
+// The PW capsomer, constructed from the icosahedron (see emergent/capsomer.hpp).
+#include "emergent/capsomer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+namespace emergent {
+
+namespace {
+
+Vec3 unit(const Vec3& v) { return (1 / std::sqrt(dot(v, v))) * v; }
+double norm(const Vec3& v) { return std::sqrt(dot(v, v)); }
+
+/// The point p with dot(a, p) = ra, dot(b, p) = rb, dot(c, p) = rc (Cramer's rule).
+Vec3 solve_planes(const Vec3& a, double ra, const Vec3& b, double rb, const Vec3& c, double rc) {
+    const double det = dot(a, cross(b, c));
+    return (1 / det) * (ra * cross(b, c) + rb * cross(c, a) + rc * cross(a, b));
+}
+
+/// One sign per rotation: q and -q are the same rotation.
+Quat canonical(Quat q) {
+    for (int k = 0; k < 4; ++k) {
+        if (std::fabs(q[k]) < 1e-12) continue;
+        return q[k] < 0 ? -1.0 * q : q;
+    }
+    return q;
+}
+
+bool same_rotation(const Quat& a, const Quat& b) { return std::fabs(std::fabs(dot(a, b)) - 1) < 1e-12; }
+
+/// Sphere centres of one layer: the layer's cross-section (the outer face scaled towards the
+/// centre), inset by `inset` from every lateral plane; its boundary at spacing <= 0.8 with
+/// corners closer than 0.4 merged, then its interior filled at the point farthest from every
+/// centre until no point of it is more than 0.55 from one (solvent cannot pass between).
+std::vector<Vec3> sphere_layer(const std::vector<Vec3>& face, const Vec3& normal, double height,
+                               const std::vector<Vec3>& inward, double inset) {
+    const std::size_t n = face.size();
+    std::vector<Vec3> corner(n);
+    for (std::size_t k = 0; k < n; ++k)
+        corner[k] = solve_planes(normal, height, inward[(k + n - 1) % n], inset, inward[k], inset);
+    std::vector<Vec3> centres;
+    for (std::size_t k = 0; k < n; ++k) {
+        const Vec3 a = corner[k], b = corner[(k + 1) % n];
+        const int segments = std::max(1, int(std::ceil(norm(b - a) / 0.8 - 1e-9)));
+        for (int j = 0; j < segments; ++j) centres.push_back(a + (double(j) / segments) * (b - a));
+    }
+    for (bool merged = true; merged;) {
+        merged = false;
+        for (std::size_t i = 0; i < centres.size() && !merged; ++i)
+            for (std::size_t j = i + 1; j < centres.size() && !merged; ++j)
+                if (norm(centres[i] - centres[j]) < 0.4) {
+                    centres[i] = 0.5 * (centres[i] + centres[j]);
+                    centres.erase(centres.begin() + long(j));
+                    merged = true;
+                }
+    }
+    // Points of the inset section on a fine grid in its plane.
+    const Vec3 e1 = unit(corner[1] - corner[0]), e2 = cross(normal, e1);
+    double lo1 = 1e300, hi1 = -1e300, lo2 = 1e300, hi2 = -1e300;
+    for (const Vec3& c : corner) {
+        lo1 = std::min(lo1, dot(c - corner[0], e1)), hi1 = std::max(hi1, dot(c - corner[0], e1));
+        lo2 = std::min(lo2, dot(c - corner[0], e2)), hi2 = std::max(hi2, dot(c - corner[0], e2));
+    }
+    std::vector<Vec3> samples;
+    const double h = 0.01;
+    for (double s = lo1; s <= hi1; s += h)
+        for (double t = lo2; t <= hi2; t += h) {
+            const Vec3 p = corner[0] + s * e1 + t * e2;
+            bool inside = true;
+            for (const Vec3& m : inward) inside = inside && dot(m, p) >= inset - 1e-12;
+            if (inside) samples.push_back(p);
+        }
+    for (;;) {
+        double worst = 0;
+        Vec3 at{0, 0, 0};
+        for (const Vec3& p : samples) {
+            double nearest = 1e300;
+            for (const Vec3& c : centres) nearest = std::min(nearest, norm(p - c));
+            if (nearest > worst) worst = nearest, at = p;
+        }
+        if (worst <= 0.55) break;
+        centres.push_back(at);
+    }
+    return centres;
+}
+
+}  // namespace
+
+Quat axis_angle(const Vec3& axis, double angle) {
+    const Vec3 u = unit(axis);
+    const double s = std::sin(0.5 * angle);
+    return {std::cos(0.5 * angle), s * u.x, s * u.y, s * u.z};
+}
+
+std::vector<Quat> icosahedral_rotations() {
+    const double phi = 0.5 * (1 + std::sqrt(5.0)), pi = std::acos(-1.0);
+    const Quat generators[2] = {axis_angle({0, 1, phi}, 2 * pi / 5), axis_angle({1, 1, 1}, 2 * pi / 3)};
+    std::vector<Quat> group{Quat{1, 0, 0, 0}};
+    for (std::size_t next = 0; next < group.size(); ++next)
+        for (const Quat& g : generators) {
+            const Quat q = canonical(normalized(group[next] * g));
+            if (std::none_of(group.begin(), group.end(), [&](const Quat& r) { return same_rotation(q, r); }))
+                group.push_back(q);
+        }
+    if (group.size() != 60) throw std::logic_error("icosahedral group: closure has the wrong order");
+    return group;
+}
+
+Capsomer pw_capsomer(double edge) {
+    if (!(edge > 0)) throw std::invalid_argument("pw_capsomer: edge must be > 0");
+    Capsomer c;
+    c.edge = edge;
+    const double phi = 0.5 * (1 + std::sqrt(5.0)), s = 1.5 * edge;  // icosahedron edge 3a
+    const Vec3 A = s * Vec3{0, 1, phi}, B = s * Vec3{phi, 0, 1}, C = s * Vec3{1, phi, 0};
+    const Vec3 P = A + (1.0 / 3) * (B - A), O = (1.0 / 3) * (A + B + C), R = A + (2.0 / 3) * (C - A);
+    const Vec3 X = A + (1.0 / 3) * (C - A);  // the long base's midpoint (a T-junction in the shell)
+    c.outer_face = {A, P, O, R};
+    const Vec3 normal = unit(O);  // the face ABC is normal to its centre's direction
+    c.face_distance = norm(O);
+    const Vec3 middle = 0.25 * (A + P + O + R);
+    std::vector<Vec3> inward;  // lateral planes through the centre, one per edge V_k V_k+1
+    for (std::size_t k = 0; k < 4; ++k) {
+        Vec3 m = unit(cross(c.outer_face[k], c.outer_face[(k + 1) % 4]));
+        inward.push_back(dot(m, middle) > 0 ? m : -1.0 * m);
+    }
+    const double depths[2] = {0.5, 1.2};
+    for (const double d : depths) {
+        const std::vector<Vec3> layer =
+            sphere_layer(c.outer_face, normal, c.face_distance - d, inward, c.sphere_inset);
+        c.spheres.insert(c.spheres.end(), layer.begin(), layer.end());
+    }
+    // Contact faces: (the end nearer the axis relating the pair, the other end, fractions).
+    // 5-fold contacts are measured from the shell vertex (at 0.25 the two non-adjacent pentamer
+    // members' matching sites would come within 0.4, inside the bond range), 3-fold from the
+    // face centre; the 2-fold contact is its own partner, so its fractions are symmetric.
+    struct Contact {
+        Vec3 from, to;
+        double u[2];
+    };
+    const Contact contacts[5] = {{A, X, {0.4, 0.85}},    // long base, A half: 5-fold +72 deg
+                                 {A, P, {0.4, 0.85}},    // short leg: 5-fold -72 deg
+                                 {O, P, {0.25, 0.75}},   // top: 3-fold +120 deg
+                                 {O, R, {0.25, 0.75}},   // leg: 3-fold -120 deg
+                                 {R, X, {0.25, 0.75}}};  // long base, R half: 2-fold
+    for (const Contact& k : contacts) {
+        std::vector<int> face;
+        for (const double d : depths)
+            for (const double u : k.u) {
+                face.push_back(int(c.sites.size()));
+                c.sites.push_back(((c.face_distance - d) / c.face_distance) * (k.from + u * (k.to - k.from)));
+            }
+        c.faces.push_back(face);
+    }
+    // Partners from the closed shell: the site of another particle that coincides with each.
+    const std::vector<Quat> group = icosahedral_rotations();
+    c.partner.assign(c.sites.size(), -1);
+    for (std::size_t a = 0; a < c.sites.size(); ++a)
+        for (std::size_t g = 1; g < group.size(); ++g)
+            for (std::size_t b = 0; b < c.sites.size(); ++b)
+                if (norm(c.sites[a] - rotate(group[g], c.sites[b])) < 1e-9) {
+                    if (c.partner[a] >= 0) throw std::logic_error("capsomer: a site meets two partners");
+                    c.partner[a] = int(b);
+                }
+    for (std::size_t a = 0; a < c.sites.size(); ++a)
+        if (c.partner[a] < 0 || c.partner[std::size_t(c.partner[a])] != int(a))
+            throw std::logic_error("capsomer: site " + std::to_string(a) + " has no mutual partner");
+    return c;
+}
+
+}  // namespace emergent

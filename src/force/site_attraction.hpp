@@ -1,0 +1,123 @@
+// SPDX-License-Identifier: MIT
+// Soft spheres with attraction sites (the capsid model): the pair law and its loops, written
+// once for the host's half list and the back end's full list.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "emergent/vec3.hpp"
+
+namespace emergent::force {
+
+/// Which law a pair of species meets: none, WCA between volume species, or the site attraction
+/// between partner site types. Held by value (device kernels get a copy).
+struct SphereSiteLaw {
+    static constexpr int kMaxSiteTypes = 32;
+    enum Kind { kNone = 0, kRepulsion = 1, kAttraction = 2 };
+
+    int first_site = 1, n_site_types = 0;
+    int partner[kMaxSiteTypes] = {};
+    Real wca_cutoff_sq = 1.2599210498948732;  // 2^(1/3): WCA, sigma = epsilon = 1
+    Real e = 0, range_sq = 9, harmonic_sq = 0.09, inverse_range_sq = 1.0 / 9, inverse_harmonic_4 = 0;
+
+    EMERGENT_HD int kind(int a, int b) const {
+        if (a < first_site && b < first_site) return kRepulsion;
+        const int ta = a - first_site, tb = b - first_site;
+        if (ta >= 0 && tb >= 0 && ta < n_site_types && partner[ta] == tb) return kAttraction;
+        return kNone;
+    }
+
+    /// |f|/r of a pair of kind `k` at squared distance r2 (0 beyond its range); with `energy`,
+    /// also its energy.
+    EMERGENT_HD Real force_over_r(int k, Real r2, Real* energy) const {
+        if (k == kRepulsion) {
+            if (!(r2 < wca_cutoff_sq)) return 0;
+            const Real ri2 = Real(1) / r2, ri6 = ri2 * ri2 * ri2;
+            if (energy) *energy = Real(4) * ri6 * (ri6 - Real(1)) + Real(1);  // shifted: 0 at 2^(1/6)
+            return Real(48) * ri6 * (ri6 - Real(0.5)) * ri2;
+        }
+        if (k == kAttraction) {
+            if (!(r2 < range_sq)) return 0;
+            if (r2 < harmonic_sq) {  // stretched harmonic well: finite where partners coincide
+                if (energy)
+                    *energy = e * (inverse_range_sq + r2 * inverse_harmonic_4 - Real(2) / harmonic_sq);
+                return Real(-2) * e * inverse_harmonic_4;
+            }
+            if (energy) *energy = e * (inverse_range_sq - Real(1) / r2);
+            return Real(-2) * e / (r2 * r2);
+        }
+        return 0;
+    }
+
+    /// |f|/r of species si at separation d from species sj (0 if they do not interact).
+    EMERGENT_HD Real between(int si, int sj, const Vec3& d, Real* energy) const {
+        const int k = kind(si, sj);
+        return k == kNone ? Real(0) : force_over_r(k, dot(d, d), energy);
+    }
+};
+
+/// Forces, and with Sample energy and virial, over a half list (host): each pair once, Newton's
+/// third law on both members; a pair with a ghost counts half its energy and virial.
+template <bool Sample>
+void sphere_site_half_list(const SphereSiteLaw& law, std::size_t n_owned, const Vec3* x, const int* sp,
+                           Vec3* f, const std::uint32_t* offset, const std::uint32_t* nb,
+                           double& potential, double& virial) {
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        const Vec3 xi = x[i];
+        const int si = sp[i];
+        Vec3 fi{0, 0, 0};
+        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+            const std::uint32_t j = nb[k];
+            const Vec3 d = xi - x[j];
+            Real u = 0;
+            const Real fr = law.between(si, sp[j], d, Sample ? &u : nullptr);
+            fi += fr * d;
+            f[j] -= fr * d;
+            if constexpr (Sample) {
+                const Real weight = j < n_owned ? 1.0 : 0.5;
+                potential += weight * u;
+                virial += weight * fr * dot(d, d);
+            }
+        }
+        f[i] += fi;
+    }
+}
+
+/// The same over a full list as a per-particle functor: f[i] += the sum over i's neighbours;
+/// with Sample, energy[i] and virial[i] get half of each of its pairs.
+template <bool Sample>
+struct SphereSiteFullList {
+    SphereSiteLaw law;
+    const Vec3* x;
+    const int* sp;
+    Vec3* f;
+    const std::uint32_t* offset;
+    const std::uint32_t* index;
+    Real* energy = nullptr;
+    Real* virial = nullptr;
+
+    EMERGENT_HD void operator()(std::size_t i) const {
+        const Vec3 xi = x[i];
+        const int si = sp[i];
+        Vec3 fi{0, 0, 0};
+        Real u_sum = 0, w_sum = 0;
+        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
+            const Vec3 d = xi - x[index[k]];
+            Real u = 0;
+            const Real fr = law.between(si, sp[index[k]], d, Sample ? &u : nullptr);
+            fi += fr * d;
+            if constexpr (Sample) {
+                u_sum += u;
+                w_sum += fr * dot(d, d);
+            }
+        }
+        f[i] += fi;
+        if constexpr (Sample) {
+            energy[i] = Real(0.5) * u_sum;
+            virial[i] = Real(0.5) * w_sum;
+        }
+    }
+};
+
+}  // namespace emergent::force

@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: MIT
+// Bonds and clusters of bodies from their attraction sites.
+#include "emergent/site_bonds.hpp"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <set>
+#include <unordered_map>
+
+#include "emergent/error.hpp"
+#include "emergent/simulation.hpp"
+
+namespace emergent {
+
+namespace {
+
+/// Union-find with path halving.
+int root(std::vector<int>& parent, int i) {
+    while (parent[std::size_t(i)] != i) i = parent[std::size_t(i)] = parent[std::size_t(parent[std::size_t(i)])];
+    return i;
+}
+
+}  // namespace
+
+int BondCensus::complete_clusters(int size, int full_degree) const {
+    std::vector<char> complete(cluster_size.size());
+    for (std::size_t c = 0; c < cluster_size.size(); ++c) complete[c] = cluster_size[c] == size;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+        if (degree[b] != full_degree) complete[std::size_t(cluster[b])] = 0;
+    return int(std::count(complete.begin(), complete.end(), 1));
+}
+
+int BondCensus::largest_cluster() const {
+    return cluster_size.empty() ? 0 : *std::max_element(cluster_size.begin(), cluster_size.end());
+}
+
+std::vector<double> BondCensus::mass_fractions(const std::vector<int>& upper) const {
+    std::vector<double> f(upper.size(), 0.0);
+    if (bodies.empty()) return f;
+    for (const int n : cluster_size) {
+        int lower = 0;
+        for (std::size_t g = 0; g < upper.size(); ++g) {
+            if (n > lower && n <= upper[g]) f[g] += n;
+            lower = upper[g];
+        }
+    }
+    for (double& x : f) x /= double(bodies.size());
+    return f;
+}
+
+BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondRule& rule,
+                           const Box& box) {
+    const int n_types = int(rule.partner.size());
+    std::vector<int> face_of(std::size_t(n_types), -1);
+    for (std::size_t f = 0; f < rule.faces.size(); ++f)
+        for (const int t : rule.faces[f]) {
+            if (t < 0 || t >= n_types) throw InputError("site bonds: face site type " + std::to_string(t) + " unknown");
+            face_of[std::size_t(t)] = int(f);
+        }
+    BondCensus census;
+    for (const SiteRecord& s : sites) census.bodies.push_back(s.body);
+    std::sort(census.bodies.begin(), census.bodies.end());
+    census.bodies.erase(std::unique(census.bodies.begin(), census.bodies.end()), census.bodies.end());
+    const std::size_t n_bodies = census.bodies.size();
+    auto index_of = [&](std::int64_t id) {
+        return int(std::lower_bound(census.bodies.begin(), census.bodies.end(), id) - census.bodies.begin());
+    };
+
+    // Sites binned by (cell, type) in cells at least bond_range wide.
+    const Vec3 length = box.hi - box.lo;
+    int n_cells[3];
+    for (int d = 0; d < 3; ++d)
+        n_cells[d] = std::max(1, std::min(1024, int(std::floor(length[d] / rule.bond_range))));
+    auto cell_of = [&](const Vec3& x, int d) {
+        const int c = int(std::floor((x[d] - box.lo[d]) / length[d] * n_cells[d]));
+        if (box.periodic[d]) return ((c % n_cells[d]) + n_cells[d]) % n_cells[d];
+        return std::clamp(c, 0, n_cells[d] - 1);
+    };
+    auto key = [&](int cx, int cy, int cz, int type) {
+        return ((std::int64_t(cx) * n_cells[1] + cy) * n_cells[2] + cz) * n_types + type;
+    };
+    std::unordered_map<std::int64_t, std::vector<std::uint32_t>> bins;
+    for (std::size_t s = 0; s < sites.size(); ++s) {
+        if (sites[s].type < 0 || sites[s].type >= n_types)
+            throw InputError("site bonds: site type " + std::to_string(sites[s].type) + " unknown");
+        bins[key(cell_of(sites[s].x, 0), cell_of(sites[s].x, 1), cell_of(sites[s].x, 2), sites[s].type)]
+            .push_back(std::uint32_t(s));
+    }
+    auto separation = [&](Vec3 d) {
+        for (int k = 0; k < 3; ++k)
+            if (box.periodic[k]) {
+                d[k] -= length[k] * std::nearbyint(d[k] / length[k]);
+            }
+        return d;
+    };
+
+    // matched[(i, face)] : partner bodies j with the number of i's face sites near j's partners.
+    std::unordered_map<std::int64_t, std::vector<std::pair<int, int>>> matched;
+    const double range_sq = rule.bond_range * rule.bond_range;
+    for (const SiteRecord& s : sites) {
+        const int face = face_of[std::size_t(s.type)];
+        if (face < 0) continue;
+        const int want = rule.partner[std::size_t(s.type)];
+        const int i = index_of(s.body);
+        const int c[3] = {cell_of(s.x, 0), cell_of(s.x, 1), cell_of(s.x, 2)};
+        std::set<std::int64_t> near;  // distinct neighbouring cells (few cells: images repeat)
+        for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dz = -1; dz <= 1; ++dz) {
+                    int q[3] = {c[0] + dx, c[1] + dy, c[2] + dz};
+                    bool inside = true;
+                    for (int d = 0; d < 3; ++d) {
+                        if (box.periodic[d]) q[d] = ((q[d] % n_cells[d]) + n_cells[d]) % n_cells[d];
+                        else inside = inside && q[d] >= 0 && q[d] < n_cells[d];
+                    }
+                    if (inside) near.insert(key(q[0], q[1], q[2], want));
+                }
+        for (const std::int64_t k : near) {
+            const auto bin = bins.find(k);
+            if (bin == bins.end()) continue;
+            for (const std::uint32_t o : bin->second) {
+                if (sites[o].body == s.body) continue;
+                const Vec3 d = separation(s.x - sites[o].x);
+                if (dot(d, d) >= range_sq) continue;
+                auto& list = matched[std::int64_t(i) * std::int64_t(rule.faces.size()) + face];
+                const int j = index_of(sites[o].body);
+                auto it = std::find_if(list.begin(), list.end(), [&](const auto& p) { return p.first == j; });
+                if (it == list.end()) list.push_back({j, 1});
+                else ++it->second;
+            }
+        }
+    }
+    std::set<std::pair<int, int>> bonds;
+    for (const auto& [k, list] : matched) {
+        const int i = int(k / std::int64_t(rule.faces.size()));
+        const std::size_t face = std::size_t(k % std::int64_t(rule.faces.size()));
+        for (const auto& [j, count] : list)
+            if (count == int(rule.faces[face].size())) bonds.insert({std::min(i, j), std::max(i, j)});
+    }
+    census.bonds.assign(bonds.begin(), bonds.end());
+    census.degree.assign(n_bodies, 0);
+    std::vector<int> parent(n_bodies);
+    std::iota(parent.begin(), parent.end(), 0);
+    for (const auto& [i, j] : census.bonds) {
+        ++census.degree[std::size_t(i)], ++census.degree[std::size_t(j)];
+        const int a = root(parent, i), b = root(parent, j);
+        if (a != b) parent[std::size_t(std::max(a, b))] = std::min(a, b);
+    }
+    census.cluster.assign(n_bodies, -1);
+    std::vector<int> number(n_bodies, -1);
+    for (std::size_t b = 0; b < n_bodies; ++b) {
+        const int r = root(parent, int(b));
+        if (number[std::size_t(r)] < 0) {
+            number[std::size_t(r)] = int(census.cluster_size.size());
+            census.cluster_size.push_back(0);
+        }
+        census.cluster[b] = number[std::size_t(r)];
+        ++census.cluster_size[std::size_t(number[std::size_t(r)])];
+    }
+    return census;
+}
+
+BondCensus site_bond_census(const Simulation& sim, const SiteBondRule& rule) {
+    const ParticleStore& p = sim.particles();
+    const int n_types = int(rule.partner.size());
+    std::vector<double> mine;  // x, y, z, type, body per owned site
+    if (p.has_rigid_fields())
+        for (std::size_t i = 0; i < p.n_owned(); ++i) {
+            const int t = p.species[i] - rule.first_site;
+            if (p.body[i] < 0 || t < 0 || t >= n_types) continue;
+            mine.insert(mine.end(), {p.position[i].x, p.position[i].y, p.position[i].z, double(t),
+                                     double(p.body[i])});
+        }
+    const int ranks = sim.n_ranks();
+    std::vector<int> counts(static_cast<std::size_t>(ranks)), offsets(static_cast<std::size_t>(ranks), 0);
+    const int n_mine = int(mine.size());
+    MPI_Allgather(&n_mine, 1, MPI_INT, counts.data(), 1, MPI_INT, sim.comm());
+    for (int r = 1; r < ranks; ++r) offsets[std::size_t(r)] = offsets[std::size_t(r - 1)] + counts[std::size_t(r - 1)];
+    std::vector<double> all(std::size_t(offsets.back() + counts.back()));
+    MPI_Allgatherv(mine.data(), n_mine, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE,
+                   sim.comm());
+    std::vector<SiteRecord> sites(all.size() / 5);
+    for (std::size_t s = 0; s < sites.size(); ++s)
+        sites[s] = {{all[5 * s], all[5 * s + 1], all[5 * s + 2]}, int(all[5 * s + 3]),
+                    std::int64_t(all[5 * s + 4])};
+    return find_site_bonds(sites, rule, sim.box());
+}
+
+}  // namespace emergent

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# capsid-assembly at `tiny` (60 capsomers in explicit solvent), with seeds other than the preset's:
+#   a closed shell at e = 0.09 stays one complete shell (60 members, 150 bonds, every degree 5)
+#   at every sample of 4000 steps, on 2 ranks (the shell straddles the domain boundary, so the
+#   census gathers sites across ranks);
+#   the same shell with no attraction falls apart: no cluster larger than 5 at the end;
+#   without attraction, capsomers started apart take the solvent's temperature through
+#   collisions alone (the thermostat acts on the solvent only), in translation and rotation.
+# usage: capsid_assembly_tiny.sh EMERGENT MPIRUN
+set -euo pipefail
+exe=$1
+mpirun=$2
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+common=(--preset tiny --set progress_interval=0)
+OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "$mpirun" -q --oversubscribe -np 2 \
+  "$exe" run capsid-assembly "${common[@]}" --set attraction=0.09 --set seed=31 --set steps=4000 \
+  --set sample_every=250 -o "$dir/bound" >/dev/null
+"$exe" run capsid-assembly "${common[@]}" --set attraction=0 --set seed=31 --set steps=4000 \
+  --set sample_every=250 -o "$dir/free" >/dev/null
+"$exe" run capsid-assembly "${common[@]}" --set attraction=0 --set start=monomers --set seed=4242 \
+  --set steps=30000 --set sample_every=500 -o "$dir/monomers" >/dev/null
+/usr/bin/python3 - "$dir" <<'PY'
+import sys
+import h5py, numpy as np
+d = sys.argv[1]
+def series(run, name):
+    with h5py.File(f"{d}/{run}/trajectory.h5", "r") as f:
+        g = f["observables"][name]
+        v = g["value"][:]
+        return g["step"][:], v.ravel() if v.ndim == 2 and v.shape[1] == 1 else v
+fail = []
+_, bonds = series("bound", "bonds")
+_, shells = series("bound", "complete_shells")
+print(f"e=0.09: bonds {int(bonds.min())}..{int(bonds.max())}, complete shells {int(shells.min())}..{int(shells.max())} over {len(bonds)} samples")
+if bonds.min() != 150 or shells.min() != 1:
+    fail.append("the closed shell did not stay closed at e=0.09")
+_, largest = series("free", "largest_cluster")
+_, fbonds = series("free", "bonds")
+print(f"e=0: largest cluster {int(largest[0])} at the first sample, {int(largest[-1])} at the end; bonds at the end {int(fbonds[-1])}")
+if largest[-1] > 5:
+    fail.append("the shell without attraction did not fall apart")
+step, caps = series("monomers", "capsomer_temperature")
+_, solvent = series("monomers", "solvent_temperature")
+# After 10000 steps (50 tau; rotation relaxes over ~25 tau from its start), 40 samples over
+# 100 tau. A 60-body temperature fluctuates by sqrt(2/180) = 0.105 per sample; with a
+# correlation time of ~10 tau there are >= 10 independent samples, a standard error <= 0.033,
+# so 0.12 is ~3.6 standard errors.
+late = step > 10000
+t_trans, t_rot = caps[late, 0].mean(), caps[late, 1].mean()
+t_solvent = solvent[late].mean()
+print(f"e=0, monomers: solvent T {t_solvent:.3f}, capsomers translation {t_trans:.3f}, rotation {t_rot:.3f}")
+for name, t in (("translational", t_trans), ("rotational", t_rot)):
+    if abs(t - t_solvent) > 0.12:
+        fail.append(f"capsomers' {name} temperature {t:.3f} is not the solvent's {t_solvent:.3f}")
+if fail:
+    sys.exit("FAIL: " + "; ".join(fail))
+print("ok")
+PY
