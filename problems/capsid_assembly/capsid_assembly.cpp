@@ -176,23 +176,26 @@ public:
         std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key[a] < key[b]; });
         order.resize(std::size_t(n_solvent_));
         std::sort(order.begin(), order.end());
-        for (std::size_t s = 0; s < order.size(); ++s) {
-            const auto id = std::uint64_t(s);
-            const double speed = std::sqrt(T);  // solvent mass 1
-            sim.add_particle(lattice[order[s]],
-                             {speed * gaussian(seed, id, 4), speed * gaussian(seed, id, 5), speed * gaussian(seed, id, 6)},
-                             kSolvent, std::int64_t(id));
-        }
-        // Bodies at temperature T: translation by their mass, rotation by their mean moment.
+        // Velocities at temperature T (bodies: translation by their mass, rotation by their
+        // mean moment), less the common drift, so the total momentum is zero.
         const double mass = c_.real("mass_ratio"), m_sphere = mass / double(design_.spheres.size());
         double moment = 0;
         for (const Vec3& s : design_.spheres) moment += m_sphere * (2.0 / 3.0 * dot(s - centre_, s - centre_) + 0.1);
+        auto velocity = [&](std::uint64_t id, double m) {
+            const double v = std::sqrt(T / m);
+            return Vec3{v * gaussian(seed, id, 4), v * gaussian(seed, id, 5), v * gaussian(seed, id, 6)};
+        };
+        Vec3 momentum{0, 0, 0};
+        for (std::size_t s = 0; s < order.size(); ++s) momentum += velocity(s, 1.0);  // solvent mass 1
+        for (std::size_t b = 0; b < com.size(); ++b) momentum += mass * velocity(std::uint64_t(n_solvent_) + b, mass);
+        const Vec3 drift = (1 / (double(order.size()) + mass * double(com.size()))) * momentum;
+        for (std::size_t s = 0; s < order.size(); ++s)
+            sim.add_particle(lattice[order[s]], velocity(s, 1.0) - drift, kSolvent, std::int64_t(s));
         const std::int64_t per_body = std::int64_t(design_.spheres.size() + design_.sites.size());
         for (std::size_t b = 0; b < com.size(); ++b) {
             const auto id = std::uint64_t(n_solvent_) + b;
-            const double v = std::sqrt(T / mass), w = std::sqrt(T / moment);
-            sim.add_body(kind_, com[b], turn[b],
-                         {v * gaussian(seed, id, 4), v * gaussian(seed, id, 5), v * gaussian(seed, id, 6)},
+            const double w = std::sqrt(T / moment);
+            sim.add_body(kind_, com[b], turn[b], velocity(id, mass) - drift,
                          {w * gaussian(seed, id, 7), w * gaussian(seed, id, 8), w * gaussian(seed, id, 9)},
                          std::int64_t(b), n_solvent_ + std::int64_t(b) * per_body);
         }

@@ -17,7 +17,7 @@ pairs=()
 # Both back ends with the same list layout, the device's (full), so the host runs the device's
 # loops too.
 for scene in lj-fluid granular-bed planar-couette rayleigh-benard rotating-drum taylor-couette \
-             vibrated-sawtooth; do
+             vibrated-sawtooth capsid-assembly; do
   layout=full  # every scene's force terms have a back-end form
   # The sawtooth's tiny run is 110 cycles: its settling and 10 cycles suffice here.
   extra=()
