@@ -48,6 +48,18 @@ struct BondCensus {
     std::vector<double> mass_fractions(const std::vector<int>& upper) const;
 };
 
+/// How clusters changed between two censuses of the same bodies, tallied by size (entry n - 1
+/// for clusters of n members, n up to the tally's length): each earlier cluster's successor is
+/// the later cluster that holds most of its members (ties: the one found first). An earlier
+/// cluster of n whose successor has n + 1 members `grew`, n - 1 `shrank`; `seen` counts the
+/// earlier clusters of each size, so grew[n-1] / seen[n-1] is the chance that a cluster of n
+/// gains one member within one interval, and grew / (grew + shrank) that a step is growth.
+struct ClusterEvents {
+    std::vector<double> grew, shrank, seen;
+    explicit ClusterEvents(std::size_t max_size = 0) : grew(max_size), shrank(max_size), seen(max_size) {}
+    void tally(const BondCensus& before, const BondCensus& after);
+};
+
 /// The bonds among the given sites; distances by the nearest image along periodic axes of
 /// `box`. Every body that has a site is listed, bonded or not.
 BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondRule& rule,

@@ -4,6 +4,7 @@
 // 60-particle shells (paper: "Supramolecular self-assembly").
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <sstream>
 #include <vector>
@@ -208,6 +209,8 @@ public:
         const KineticParts k = sim.kinetic_parts();
         const double solvent_t = k.n_free > 0 ? 2 * k.free / (3.0 * double(k.n_free)) : 0;
         const double nb = double(std::max<long long>(1, k.n_bodies));
+        if (!previous_.bodies.empty()) events_.tally(previous_, census);
+        previous_ = census;
         last_shells_ = census.complete_clusters(kShell, kFullDegree);
         last_largest_ = census.largest_cluster();
         return {{"bonds", {double(census.bonds.size())}},
@@ -218,7 +221,35 @@ public:
                 {"mass_fractions", census.mass_fractions(kGroups)},
                 {"yield", {double(last_shells_ * kShell) / double(std::max<std::int64_t>(1, n_capsomers_))}},
                 {"solvent_temperature", {solvent_t}},
-                {"capsomer_temperature", {2 * k.translational / (3 * nb), 2 * k.rotational / (3 * nb)}}};
+                {"capsomer_temperature", {2 * k.translational / (3 * nb), 2 * k.rotational / (3 * nb)}},
+                {"growth_events", events_.grew},
+                {"loss_events", events_.shrank},
+                {"clusters_seen", events_.seen}};
+    }
+
+    // The event tallies go on across a continuation, from the last sample's clusters.
+    Measures saved_state() const override {
+        std::vector<double> bodies(previous_.bodies.begin(), previous_.bodies.end()),
+            cluster(previous_.cluster.begin(), previous_.cluster.end()),
+            sizes(previous_.cluster_size.begin(), previous_.cluster_size.end());
+        return {{"growth_events", events_.grew}, {"loss_events", events_.shrank},
+                {"clusters_seen", events_.seen}, {"previous_bodies", bodies},
+                {"previous_cluster", cluster}, {"previous_sizes", sizes}};
+    }
+
+    void restore_state(const std::map<std::string, std::vector<double>>& state) override {
+        auto get = [&](const char* name) {
+            const auto it = state.find(name);
+            if (it == state.end()) throw InputError(c_.scene() + ": the checkpoint lacks " + name);
+            return it->second;
+        };
+        events_.grew = get("growth_events");
+        events_.shrank = get("loss_events");
+        events_.seen = get("clusters_seen");
+        previous_ = BondCensus{};
+        for (double x : get("previous_bodies")) previous_.bodies.push_back(std::int64_t(x));
+        for (double x : get("previous_cluster")) previous_.cluster.push_back(int(x));
+        for (double x : get("previous_sizes")) previous_.cluster_size.push_back(int(x));
     }
 
     std::string progress_note(const Measures&) const override {
@@ -236,6 +267,8 @@ private:
     double length_ = 0, reach_ = 0, shell_outer_ = 0;
     Vec3 centre_{0, 0, 0};
     int last_shells_ = 0, last_largest_ = 0;
+    BondCensus previous_;  ///< at the last sample
+    ClusterEvents events_{kShell};
 };
 
 ProblemInfo capsid_assembly_info() {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numeric>
 #include <set>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "emergent/error.hpp"
@@ -49,6 +50,32 @@ std::vector<double> BondCensus::mass_fractions(const std::vector<int>& upper) co
     }
     for (double& x : f) x /= double(bodies.size());
     return f;
+}
+
+void ClusterEvents::tally(const BondCensus& before, const BondCensus& after) {
+    if (before.bodies != after.bodies)
+        throw std::logic_error("cluster events: the censuses hold different bodies");
+    const std::size_t n_before = before.cluster_size.size();
+    // For each earlier cluster, its members' later clusters.
+    std::vector<std::vector<int>> later(n_before);
+    for (std::size_t b = 0; b < before.bodies.size(); ++b)
+        later[std::size_t(before.cluster[b])].push_back(after.cluster[b]);
+    for (std::size_t c = 0; c < n_before; ++c) {
+        std::vector<int>& to = later[c];
+        std::sort(to.begin(), to.end());
+        int best = -1, best_count = 0;
+        for (std::size_t k = 0; k < to.size();) {
+            std::size_t e = k;
+            while (e < to.size() && to[e] == to[k]) ++e;
+            if (int(e - k) > best_count) best = to[k], best_count = int(e - k);
+            k = e;
+        }
+        const int n = before.cluster_size[c], m = after.cluster_size[std::size_t(best)];
+        if (n < 1 || std::size_t(n) > seen.size()) continue;
+        seen[std::size_t(n - 1)] += 1;
+        if (m == n + 1) grew[std::size_t(n - 1)] += 1;
+        if (m == n - 1) shrank[std::size_t(n - 1)] += 1;
+    }
 }
 
 BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondRule& rule,

@@ -245,3 +245,23 @@ TEST(Capsomer, AttractionEnergyOfShellAndDimers) {
     }
     EXPECT_EQ(energies, (std::multiset<double>{-8.325, -8.325, -8.198, -8.198, -8.044}));
 }
+
+TEST(Capsomer, ClusterEventsBySize) {
+    // Bodies 0..4: {0, 1} and {2, 3} and {4}, then {0, 1, 4} and {2} and {3}.
+    BondCensus before, after;
+    before.bodies = after.bodies = {0, 1, 2, 3, 4};
+    before.cluster = {0, 0, 1, 1, 2};
+    before.cluster_size = {2, 2, 1};
+    after.cluster = {0, 0, 1, 2, 0};
+    after.cluster_size = {3, 1, 1};
+    ClusterEvents e(60);
+    e.tally(before, after);
+    EXPECT_EQ(e.seen[1], 2);   // two pairs before
+    EXPECT_EQ(e.grew[1], 1);   // {0, 1} -> {0, 1, 4}
+    EXPECT_EQ(e.shrank[1], 1); // {2, 3} -> {2} (ties: the first found)
+    EXPECT_EQ(e.seen[0], 1);   // the monomer 4, absorbed: a jump 1 -> 3, neither
+    EXPECT_EQ(e.grew[0] + e.shrank[0], 0);
+    BondCensus other = after;
+    other.bodies = {0, 1, 2, 3, 5};
+    EXPECT_THROW(e.tally(before, other), std::logic_error);
+}
