@@ -105,6 +105,17 @@ struct KineticParts {
     long long n_free = 0, n_bodies = 0;
 };
 
+/// Langevin dynamics for rigid bodies, an implicit solvent: at the end of every step each
+/// body's velocity relaxes at `translation_rate` (friction force -rate M v) and its angular
+/// velocity about each principal axis at `rotation_rate` (torque -rate I w), with the noise that
+/// keeps them at `temperature` (the exact Ornstein-Uhlenbeck update, noise drawn from (seed,
+/// body id, step): the same on any rank count). Diffusion: D = T / (M rate) in translation,
+/// T / (I_k rate) about principal axis k.
+struct BodyLangevinSettings {
+    double temperature = 1, translation_rate = 0, rotation_rate = 0;
+    std::uint64_t seed = 0;
+};
+
 /// Wall-clock seconds spent in each part of the step (this rank).
 struct PhaseTimes {
     double neighbour = 0;  ///< migration, sorting, ghost build, cell and Verlet lists
@@ -137,6 +148,8 @@ public:
     /// solvent bath), rescaling their velocities about their mean; the bodies reach the bath's
     /// temperature through collisions only.
     void set_thermostat(std::unique_ptr<Thermostat> thermostat);
+    /// Langevin dynamics for the rigid bodies (after the thermostat, if any, in each step).
+    void set_body_langevin(const BodyLangevinSettings& settings);
     /// Adds a boundary rule (applied after each drift, in the order added); the simulation
     /// keeps it, the scene may keep the returned pointer to read the rule's exchange.
     BoundaryRule* add_boundary(std::unique_ptr<BoundaryRule> rule);

@@ -40,7 +40,9 @@ public:
         n_capsomers_ = c.integer("capsomers");
         const double p = c.real("particle_fraction");
         n_total_ = std::llround(double(n_capsomers_) / p);
-        n_solvent_ = n_total_ - n_capsomers_;
+        implicit_ = c.text("solvent") == "implicit";
+        // An implicit solvent keeps the explicit one's volume (the same concentration).
+        n_solvent_ = implicit_ ? 0 : n_total_ - n_capsomers_;
         length_ = std::cbrt(double(n_total_) / c.real("density"));
         const std::string start = c.text("start");
         shell_members_ = start == "shell" ? kShell : (start == "open_shell" ? kShell - 1 : 0);
@@ -90,8 +92,12 @@ public:
             diameters.push_back(0.0);  // a point
         }
         kind_ = sim.add_body_kind(positions, species, diameters);
-        sim.set_thermostat(make_bussi_thermostat(c_.real("temperature"), c_.real("thermostat_tau"),
-                                                 static_cast<std::uint64_t>(c_.integer("seed")) + 1));
+        const auto seed = static_cast<std::uint64_t>(c_.integer("seed"));
+        if (implicit_)
+            sim.set_body_langevin({c_.real("temperature"), c_.real("friction_translation"),
+                                   c_.real("friction_rotation"), seed + 2});
+        else
+            sim.set_thermostat(make_bussi_thermostat(c_.real("temperature"), c_.real("thermostat_tau"), seed + 1));
     }
 
     ParticleEstimate expected_particles(const Simulation&) const override {
@@ -267,6 +273,7 @@ private:
     double length_ = 0, reach_ = 0, shell_outer_ = 0;
     Vec3 centre_{0, 0, 0};
     int last_shells_ = 0, last_largest_ = 0;
+    bool implicit_ = false;
     BondCensus previous_;  ///< at the last sample
     ClusterEvents events_{kShell};
 };
@@ -290,12 +297,25 @@ ProblemInfo capsid_assembly_info() {
               "r_b: two faces are bonded when all four site pairs are closer (analysis only)")
         .real("temperature", 1.0, 0, 1e4, "epsilon/k_B", "the solvent thermostat's temperature")
         .real("thermostat_tau", 0.5, 0, 1e9, "tau", "relaxation time of the solvent's Bussi thermostat", true)
+        .choice("solvent", "explicit", {"explicit", "implicit"},
+                "explicit: WCA atoms with a Bussi thermostat; implicit: none, the capsomers "
+                "follow Langevin dynamics (friction_translation, friction_rotation) in the "
+                "same volume")
+        // Matched to a monomer in the explicit solvent (benchmarks/logs/capsid_diffusion_
+        // 2026-12-02.log): its mean squared displacement up to 50 tau fits the Langevin form at
+        // 0.10 (D = 0.67), and its axes' orientation correlation falls to 1/e at 2.28 tau, as
+        // at 0.05 (2.28; 0.3 gives 2.53).
+        .real("friction_translation", 0.1, 0, 1e6, "1/tau",
+              "implicit solvent: relaxation rate of a capsomer's velocity (D = T / (M rate))")
+        .real("friction_rotation", 0.05, 0, 1e6, "1/tau",
+              "implicit solvent: relaxation rate of its angular velocity about each principal axis")
         .choice("start", "monomers", {"monomers", "shell", "open_shell"},
                 "monomers: all capsomers apart; shell: one closed shell at the centre plus "
                 "monomers; open_shell: that shell less one capsomer (a 59-cluster) plus monomers");
     info.schema.structural({"capsomers", "particle_fraction", "density", "edge", "mass_ratio",
-                            "attraction_range", "harmonic_range", "start"})
-        .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau"});
+                            "attraction_range", "harmonic_range", "start", "solvent"})
+        .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau",
+                     "friction_translation", "friction_rotation"});
     info.presets["tiny"] = {{"capsomers", "60"}, {"start", "shell"}, {"steps", "2000"},
                             {"sample_every", "200"}};
     info.presets["paper"] = {{"capsomers", "4752"}, {"steps", "320000000"}, {"sample_every", "50000"},

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "decomposition/exact_sum.hpp"
@@ -50,6 +51,7 @@ struct Simulation::Engine {
     std::vector<double> mass{1.0}, inverse_mass{1.0};
     std::vector<std::unique_ptr<ForceTerm>> forces;
     std::unique_ptr<Thermostat> thermostat;
+    std::optional<BodyLangevinSettings> body_langevin;
     std::vector<std::unique_ptr<BoundaryRule>> boundaries;
     std::vector<std::unique_ptr<WallLayerThermostat>> wall_layers;
     std::string boundary_fault;  ///< first particle a rule could not return, since last check
@@ -412,6 +414,17 @@ struct Simulation::Engine {
         backend_wrote(kVelocity);
     }
 
+    void apply_body_langevin() {
+        if (!body_langevin || !bodies()) return;
+        PhaseTimer timer(times.integrate);
+        host_reads(kPosition | kVelocity | kBody);
+        const double dt = settings.dt;
+        rigid.langevin(store, std::exp(-body_langevin->translation_rate * dt),
+                       std::exp(-body_langevin->rotation_rate * dt), body_langevin->temperature,
+                       body_langevin->seed, static_cast<std::uint64_t>(step));
+        host_wrote(kVelocity);
+    }
+
     void apply_wall_layers() {
         if (wall_layers.empty()) return;
         PhaseTimer timer(times.integrate);
@@ -481,6 +494,12 @@ void Simulation::set_species_masses(const std::vector<double>& masses) {
         if (!(m >= 0)) throw InputError("species mass " + std::to_string(m) + " must be >= 0");
         engine_->inverse_mass.push_back(m > 0 ? 1.0 / m : 0.0);
     }
+}
+
+void Simulation::set_body_langevin(const BodyLangevinSettings& settings) {
+    if (!(settings.temperature >= 0) || !(settings.translation_rate >= 0) || !(settings.rotation_rate >= 0))
+        throw InputError("body Langevin: temperature and rates must be >= 0");
+    engine_->body_langevin = settings;
 }
 
 void Simulation::add_force(std::unique_ptr<ForceTerm> term) {
@@ -749,6 +768,7 @@ void Simulation::step(bool sample) {
     }
     }
     e.apply_thermostat();
+    e.apply_body_langevin();
     ++e.step;
     e.time += dt;
     e.apply_wall_layers();  // keyed by the step just completed
@@ -873,7 +893,7 @@ void Simulation::restore_exchange_tallies(const std::vector<double>& t) {
 }
 
 bool Simulation::conserves_energy() const {
-    if (engine_->thermostat || !engine_->wall_layers.empty()) return false;
+    if (engine_->thermostat || engine_->body_langevin || !engine_->wall_layers.empty()) return false;
     for (const auto& term : engine_->forces)
         if (!term->conservative()) return false;
     for (const auto& rule : engine_->boundaries)

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 
+#include "emergent/random.hpp"
 #include "rigid/no_squish.hpp"
 
 namespace emergent::rigid {
@@ -91,6 +92,42 @@ struct BodyKick {
         s.v[b] += (kick / frames.mass[k]) * s.force[b];
         Rotor r{s.q[b], s.p[b], frames.inertia[k]};
         torque_kick(r, s.torque[b], kick);
+        s.p[b] = r.p;
+        place_constituents(s, frames, c, b, x, v, true);
+    }
+};
+
+/// Langevin dynamics of body b over one step (an implicit solvent), the exact
+/// Ornstein-Uhlenbeck update: momentum relaxes by `decay_t` = exp(-gamma_t dt) and the angular
+/// momentum about each principal axis by `decay_r`, each with the noise that keeps the
+/// Maxwell distribution at `temperature`. Noise from (seed, body id, step): the same on any
+/// rank count. Constituents' velocities follow.
+struct BodyLangevin {
+    BodyState s;
+    FrameTable frames;
+    ConstituentIndex c;
+    const std::int64_t* id;
+    Vec3* x;
+    Vec3* v;
+    double decay_t, decay_r, temperature;
+    std::uint64_t seed;
+    std::uint64_t step;
+
+    EMERGENT_HD void operator()(std::size_t b) const {
+        const int k = s.kind[b];
+        const double m = frames.mass[k];
+        const auto body = static_cast<std::uint64_t>(id[b]);
+        const double kick_t = sqrt((1 - decay_t * decay_t) * temperature / m);
+        for (int d = 0; d < 3; ++d)
+            s.v[b][d] = decay_t * s.v[b][d] + kick_t * gaussian(seed, body, 6 * step + d);
+        Rotor r{s.q[b], s.p[b], frames.inertia[k]};
+        Vec3 w = angular_velocity_body(r);
+        for (int d = 0; d < 3; ++d) {
+            const double inertia = frames.inertia[k][d];
+            const double kick_r = sqrt((1 - decay_r * decay_r) * temperature / inertia);
+            w[d] = decay_r * w[d] + kick_r * gaussian(seed, body, 6 * step + 3 + d);
+        }
+        set_angular_velocity(r, w);
         s.p[b] = r.p;
         place_constituents(s, frames, c, b, x, v, true);
     }

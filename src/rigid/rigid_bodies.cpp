@@ -118,6 +118,14 @@ void RigidBodies::kick(ParticleStore& store, double kick) {
                             store.velocity.data(), kick});
 }
 
+void RigidBodies::langevin(ParticleStore& store, double decay_t, double decay_r, double temperature,
+                           std::uint64_t seed, std::uint64_t step) {
+    exec::for_each(exec::Host{}, bodies_.n_owned(),
+                   BodyLangevin{state(), frame_table(), constituents(), bodies_.id.data(),
+                                store.position.data(), store.velocity.data(), decay_t, decay_r,
+                                temperature, seed, step});
+}
+
 double RigidBodies::kinetic() const {
     return exec::transform_sum<double>(exec::Host{}, bodies_.n_owned(), BodyKinetic{{state(), frame_table()}});
 }

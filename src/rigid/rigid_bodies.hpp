@@ -56,6 +56,9 @@ public:
     void kick_drift(ParticleStore& store, double kick, double drift);
     void sum_forces(const ParticleStore& store);
     void kick(ParticleStore& store, double kick);
+    /// One step of Langevin dynamics (BodyLangevin) for every owned body.
+    void langevin(ParticleStore& store, double decay_t, double decay_r, double temperature,
+                  std::uint64_t seed, std::uint64_t step);
 
     /// Kinetic energy (translation + rotation), momentum, angular momentum about the origin
     /// (unwrapped centres) of the owned bodies; and their degrees of freedom (6 each).
