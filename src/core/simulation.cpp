@@ -80,8 +80,15 @@ struct Simulation::Engine {
     /// With a mirror, the rebuild test and the ghosts' positions run on the back end too.
     exec::BackendHalo backend_halo;
     const Vec3* reference_on_backend = nullptr;  ///< positions at the last list build
-    // The mirror's buffers the engine fills.
+    /// The rigid bodies' arrays in the back end's memory (with a mirror and bodies), and where
+    /// their frames and constituent index are there.
+    std::unique_ptr<exec::ParticleMirror> body_mirror;
+    rigid::FrameTable frames_on_backend{};
+    rigid::ConstituentIndex constituents_on_backend{};
+    // The mirrors' buffers the engine fills.
     enum Upload : std::size_t { kListOffsets, kListIndex, kHaloIndex, kReference };
+    enum BodyUpload : std::size_t { kFrameInertia, kFrameFirst, kFramePositions, kConstituentFirst,
+                                    kConstituentIndex };
     enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack };
 
     // Each part of the step says what it reads and writes where it runs: on the back end
@@ -116,6 +123,58 @@ struct Simulation::Engine {
     }
 
     bool bodies() const { return !rigid.empty_everywhere(); }
+
+    // The bodies' fields, like the particles' (above): where the step's loops over bodies read
+    // and write them.
+    static constexpr unsigned kBodyFields = kPosition | kVelocity | kForce | kSpecies | kId | kImage |
+                                            kOrientation | kAngularMomentum | kTorque;
+    ParticleStore& host_bodies() const { return const_cast<rigid::RigidBodies&>(rigid).store(); }
+    /// The bodies' arrays where the loops run, holding the current values of `fields`.
+    rigid::RigidBodies::Arrays body_arrays(unsigned fields) const {
+        if (!body_mirror) return rigid.host_arrays();
+        body_mirror->to_backend(host_bodies(), fields);
+        rigid::RigidBodies::Arrays a;
+        a.state = {body_mirror->array<Vec3>(kPosition), body_mirror->array<Vec3>(kVelocity),
+                   body_mirror->array<Vec3>(kForce), body_mirror->array<Quat>(kOrientation),
+                   body_mirror->array<Quat>(kAngularMomentum), body_mirror->array<Vec3>(kTorque),
+                   body_mirror->array<int>(kSpecies)};
+        a.frames = frames_on_backend;
+        a.frames.mass = body_mirror->table(0, rigid.frame_masses());
+        a.constituents = constituents_on_backend;
+        a.id = body_mirror->array<std::int64_t>(kId);
+        a.image = body_mirror->array<Int3>(kImage);
+        return a;
+    }
+    void bodies_wrote(unsigned fields) const {
+        if (body_mirror) body_mirror->written_on_backend(host_bodies(), fields);
+    }
+    void bodies_to_host(unsigned fields) const {
+        if (body_mirror) body_mirror->to_host(host_bodies(), fields);
+    }
+    void bodies_host_wrote(unsigned fields) const {
+        if (body_mirror) body_mirror->written_on_host(fields);
+    }
+    /// The kinds' frames where the back end reads them (once: they are fixed by initialise).
+    void place_body_frames() {
+        if (!body_mirror || !bodies()) return;
+        auto up = [&](std::size_t slot, const auto& v) {
+            using T = typename std::decay_t<decltype(v)>::value_type;
+            return static_cast<const T*>(body_mirror->upload(slot, v.data(), v.size() * sizeof(T)));
+        };
+        frames_on_backend.inertia = up(kFrameInertia, rigid.frame_inertia());
+        frames_on_backend.first = up(kFrameFirst, rigid.frame_first());
+        frames_on_backend.positions = up(kFramePositions, rigid.frame_positions());
+    }
+    /// The constituent index where the back end reads it (after each build).
+    void place_constituents() {
+        if (!body_mirror || !bodies()) return;
+        const auto& first = rigid.constituent_first();
+        const auto& index = rigid.constituent_index();
+        constituents_on_backend.first = static_cast<const std::uint32_t*>(
+            body_mirror->upload(kConstituentFirst, first.data(), first.size() * sizeof(std::uint32_t)));
+        constituents_on_backend.index = static_cast<const std::uint32_t*>(
+            body_mirror->upload(kConstituentIndex, index.data(), index.size() * sizeof(std::uint32_t)));
+    }
     /// Constituents of a body owned here may stick out of the domain by the body's extent.
     double ghost_width() const { return list.list_cutoff() + rigid.max_extent(); }
 
@@ -212,6 +271,8 @@ struct Simulation::Engine {
         host_reads(kAllFields & ~kForce);
         host_wrote(kAllFields);
         if (!boundaries.empty()) agree_on_boundary_faults();
+        bodies_to_host(kBodyFields);  // bodies migrate and place their constituents (host code)
+        bodies_host_wrote(kBodyFields);
         if (bodies()) rigid.drop_constituents(store);
         migration.apply(store, *grid);
         if (bodies()) {
@@ -241,7 +302,10 @@ struct Simulation::Engine {
                 mirror->upload(kReference, reference.data(), reference.size() * sizeof(Vec3)));
             backend_halo.place(halo, *mirror, kHaloIndex);
         }
-        if (bodies()) rigid.index_constituents(store);
+        if (bodies()) {
+            rigid.index_constituents(store);
+            place_constituents();
+        }
         ++rebuilds;
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
         if (n != n_global) {
@@ -264,8 +328,9 @@ struct Simulation::Engine {
             for (const auto& term : forces) term->add_forces_on_backend(particles, context, sample, sums);
             backend_wrote(kForce);
             if (bodies()) {
-                host_reads(kPosition | kBody | kForce);
-                rigid.sum_forces(store);
+                rigid.sum_forces(target, body_arrays(kPosition), data(kPosition, store.position),
+                                 data(kForce, store.force));
+                bodies_wrote(kForce | kTorque);
             }
             return;
         }
@@ -275,8 +340,13 @@ struct Simulation::Engine {
         sums = ForceSums{};
         const ForceContext context{&mass, box, at};
         for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
-        if (bodies()) rigid.sum_forces(store);
         host_wrote(kForce);
+        if (bodies()) {
+            // Host code summed the forces: the bodies' sums run on the host too.
+            bodies_to_host(kPosition);
+            rigid.sum_forces(exec::Target{}, rigid.host_arrays(), store.position.data(), store.force.data());
+            bodies_host_wrote(kForce | kTorque);
+        }
     }
 
     /// v += kick f/m, x += drift v; then the walls act on the drift.
@@ -292,9 +362,11 @@ struct Simulation::Engine {
         backend_wrote(kPosition | kVelocity);
         // Spheres of bodies were moved as free particles above; the bodies now place them.
         if (bodies()) {
-            host_reads(kPosition | kVelocity | kBody);
-            rigid.kick_drift(store, kick, drift);
-            host_wrote(kPosition | kVelocity);
+            rigid.kick_drift(target, body_arrays(kPosition | kVelocity | kForce | kSpecies | kOrientation |
+                                                 kAngularMomentum | kTorque),
+                             data(kPosition, store.position), data(kVelocity, store.velocity), kick, drift);
+            bodies_wrote(kPosition | kVelocity | kOrientation | kAngularMomentum);
+            backend_wrote(kPosition | kVelocity);
         }
         if (boundaries.empty()) return;
         backend_reads(kPosition | kVelocity | kSpecies | kId);
@@ -312,9 +384,11 @@ struct Simulation::Engine {
                                        data(kSpecies, store.species), inverse_masses(), kick});
         backend_wrote(kVelocity);
         if (bodies()) {
-            host_reads(kPosition | kVelocity);
-            rigid.kick(store, kick);
-            host_wrote(kVelocity);
+            rigid.kick(target, body_arrays(kPosition | kVelocity | kForce | kSpecies | kOrientation |
+                                           kAngularMomentum | kTorque),
+                       data(kPosition, store.position), data(kVelocity, store.velocity), kick);
+            bodies_wrote(kVelocity | kAngularMomentum);
+            backend_wrote(kVelocity);
         }
     }
 
@@ -360,7 +434,9 @@ struct Simulation::Engine {
             data(kVelocity, store.velocity), data(kSpecies, store.species), masses(),
             store.has_rigid_fields() ? data(kBody, store.body) : nullptr};
         const double sum = exec::transform_sum<double>(target, store.n_owned(), energy);
-        return sum + rigid.kinetic();
+        return sum + (bodies() ? rigid.kinetic(target, body_arrays(kVelocity | kSpecies | kOrientation |
+                                                                    kAngularMomentum))
+                               : 0.0);
     }
 
     long long n_free = 0, n_bodies = 0;
@@ -417,12 +493,15 @@ struct Simulation::Engine {
     void apply_body_langevin() {
         if (!body_langevin || !bodies()) return;
         PhaseTimer timer(times.integrate);
-        host_reads(kPosition | kVelocity | kBody);
+        backend_reads(kPosition | kVelocity);
         const double dt = settings.dt;
-        rigid.langevin(store, std::exp(-body_langevin->translation_rate * dt),
+        rigid.langevin(target, body_arrays(kPosition | kVelocity | kSpecies | kId | kOrientation | kAngularMomentum),
+                       data(kPosition, store.position), data(kVelocity, store.velocity),
+                       std::exp(-body_langevin->translation_rate * dt),
                        std::exp(-body_langevin->rotation_rate * dt), body_langevin->temperature,
                        body_langevin->seed, static_cast<std::uint64_t>(step));
-        host_wrote(kVelocity);
+        bodies_wrote(kVelocity | kAngularMomentum);
+        backend_wrote(kVelocity);
     }
 
     void apply_wall_layers() {
@@ -448,6 +527,7 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
         break;
     case Backend::Checking:
         engine_->mirror = std::make_unique<exec::ParticleMirror>(exec::separate_host_memory(), true);
+        engine_->body_mirror = std::make_unique<exec::ParticleMirror>(exec::separate_host_memory(), true);
         engine_->target.separate = true;
         break;
     case Backend::Cuda:
@@ -457,6 +537,7 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
         // One device per rank (node-local rank modulo the devices); the particle data live
         // there for the whole run, on the default stream.
         engine_->mirror = std::make_unique<exec::ParticleMirror>(exec::cuda_device_memory(), false);
+        engine_->body_mirror = std::make_unique<exec::ParticleMirror>(exec::cuda_device_memory(), false);
         engine_->target.device = true;
         engine_->target.separate = true;
         break;
@@ -597,6 +678,7 @@ void Simulation::initialise() {
         e.rigid.append_constituents(e.store);
         e.n_global = decomp::sum(e.comm, static_cast<long long>(e.store.n_owned()));
     }
+    e.place_body_frames();
     e.rebuild();
     e.count_bodies();
     e.compute_forces(true, e.time);
@@ -654,7 +736,10 @@ void Simulation::snapshot(StateSnapshot& snap) const {
         snap.reference = e.list.reference_positions();
     else
         std::vector<Vec3>().swap(snap.reference);
-    if (e.bodies()) snap.bodies = e.rigid.bodies();
+    if (e.bodies()) {
+        e.bodies_to_host(Engine::kBodyFields);
+        snap.bodies = e.rigid.bodies();
+    }
     snap.step = e.step;
     snap.time = e.time;
     snap.rebuilds = e.rebuilds;
@@ -686,6 +771,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
         throw InputError("restore: the saved state and this scene disagree about rigid bodies");
     if (bodies) {
         e.rigid.store() = std::move(*bodies);
+        e.bodies_host_wrote(Engine::kBodyFields);
         if (!owned.has_rigid_fields()) owned.enable_rigid_fields();
     }
     if (reference.size() != owned.n_owned()) throw std::logic_error("restore: size mismatch");
@@ -701,6 +787,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     e.host_wrote(kAllFields);  // what lived on the back end belongs to the state left behind
     ParticleStore& s = e.store;
     e.prepare();
+    e.place_body_frames();
     e.rebuild();
     // Where particle `id` was in the saved state on this rank, or npos: a body's spheres are
     // placed by the rank that owns the body, which need not be the rank their saved copies
@@ -734,12 +821,17 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
         // A sphere whose saved copy is on another rank keeps the recomputed force (with
         // friction, a continuation then differs from the uninterrupted run at round-off level
         // and beyond, as restores with bodies may anyway).
+        e.host_reads(kForce | kPosition);
         for (std::size_t i = 0; i < s.n_owned(); ++i) {
             const std::size_t k = saved(s.id[i]);
             if (k != npos) s.force[i] = forces[k];
         }
-        if (e.bodies()) e.rigid.sum_forces(s);
         e.host_wrote(kForce);
+        if (e.bodies()) {
+            e.bodies_to_host(kPosition);
+            e.rigid.sum_forces(exec::Target{}, e.rigid.host_arrays(), s.position.data(), s.force.data());
+            e.bodies_host_wrote(kForce | kTorque);
+        }
     }
 }
 
@@ -784,7 +876,12 @@ ThermoSample Simulation::measure() const {
         integrate::FreeMomenta{e.data(kPosition, s.position), e.data(kVelocity, s.velocity),
                                e.data(kImage, s.image), e.data(kSpecies, s.species), e.masses(),
                                s.has_rigid_fields() ? e.data(kBody, s.body) : nullptr, len});
-    const Vec3 pb = e.rigid.momentum(), lb = e.rigid.angular_momentum(len);
+    Vec3 pb{0, 0, 0}, lb{0, 0, 0};
+    if (e.bodies()) {
+        const auto a = e.body_arrays(kPosition | kVelocity | kSpecies | kImage);
+        pb = e.rigid.momentum(e.target, a);
+        lb = e.rigid.angular_momentum(e.target, a, len);
+    }
     double v[9] = {e.local_kinetic(), e.sums.potential, e.sums.virial, 0, 0, 0, 0, 0, 0};
     for (int d = 0; d < 3; ++d) v[3 + d] = free.linear[d] + pb[d], v[6 + d] = free.angular[d] + lb[d];
     decomp::sum_in_place(e.comm, v, 9);
@@ -829,7 +926,10 @@ KineticParts Simulation::kinetic_parts() const {
         e.target, e.store.n_owned(),
         integrate::FreeKineticEnergy{e.data(kVelocity, e.store.velocity), e.data(kSpecies, e.store.species),
                                      e.masses(), e.store.has_rigid_fields() ? e.data(kBody, e.store.body) : nullptr});
-    const Vec3 bodies = e.bodies() ? e.rigid.kinetic_parts() : Vec3{0, 0, 0};
+    const Vec3 bodies =
+        e.bodies() ? e.rigid.kinetic_parts(e.target, e.body_arrays(kVelocity | kSpecies | kOrientation |
+                                                                   kAngularMomentum))
+                   : Vec3{0, 0, 0};
     double sums[3] = {free, bodies.x, bodies.y};
     MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, e.comm);
     KineticParts k{sums[0], sums[1], sums[2], e.bodies() ? e.n_free : e.n_global,
@@ -843,7 +943,12 @@ const std::vector<double>& Simulation::species_masses() const { return engine_->
 Backend Simulation::backend() const { return engine_->settings.backend; }
 bool Simulation::has_thermostat() const { return engine_->thermostat != nullptr; }
 bool Simulation::has_bodies() const { return engine_->bodies(); }
-ParticleStore& Simulation::bodies() { return engine_->rigid.store(); }
+ParticleStore& Simulation::bodies() {
+    // As particles(): brought up to date, and counted as changed by the caller.
+    engine_->bodies_to_host(Engine::kBodyFields);
+    engine_->bodies_host_wrote(Engine::kBodyFields);
+    return engine_->rigid.store();
+}
 long long Simulation::n_bodies_global() const { return engine_->n_bodies; }
 
 int Simulation::add_body_kind(const std::vector<Vec3>& positions, const std::vector<int>& species,

@@ -65,10 +65,14 @@ void RigidBodies::drop_constituents(ParticleStore& store) const {
     store.resize_owned(keep.size());
 }
 
-BodyState RigidBodies::state() const {
+RigidBodies::Arrays RigidBodies::host_arrays() const {
     auto& b = const_cast<ParticleStore&>(bodies_);
-    return {b.position.data(), b.velocity.data(), b.force.data(), b.orientation.data(),
-            b.angular_momentum.data(), b.torque.data(), b.species.data()};
+    return {{b.position.data(), b.velocity.data(), b.force.data(), b.orientation.data(),
+             b.angular_momentum.data(), b.torque.data(), b.species.data()},
+            {frame_mass_.data(), frame_inertia_.data(), frame_first_.data(), frame_positions_.data()},
+            {first_.data(), index_.data()},
+            b.id.data(),
+            b.image.data()};
 }
 
 void RigidBodies::append_constituents(ParticleStore& store) const {
@@ -101,47 +105,42 @@ void RigidBodies::index_constituents(const ParticleStore& store) {
     }
 }
 
-void RigidBodies::kick_drift(ParticleStore& store, double kick, double drift) {
-    exec::for_each(exec::Host{}, bodies_.n_owned(),
-                   BodyKickDrift{state(), frame_table(), constituents(), store.position.data(),
-                                 store.velocity.data(), kick, drift});
+void RigidBodies::kick_drift(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick,
+                             double drift) const {
+    exec::for_each(target, bodies_.n_owned(),
+                   BodyKickDrift{a.state, a.frames, a.constituents, x, v, kick, drift});
 }
 
-void RigidBodies::sum_forces(const ParticleStore& store) {
-    exec::for_each(exec::Host{}, bodies_.n_owned(),
-                   BodyForceAndTorque{state(), constituents(), store.position.data(), store.force.data()});
+void RigidBodies::sum_forces(const exec::Target& target, const Arrays& a, const Vec3* x, const Vec3* f) const {
+    exec::for_each(target, bodies_.n_owned(), BodyForceAndTorque{a.state, a.constituents, x, f});
 }
 
-void RigidBodies::kick(ParticleStore& store, double kick) {
-    exec::for_each(exec::Host{}, bodies_.n_owned(),
-                   BodyKick{state(), frame_table(), constituents(), store.position.data(),
-                            store.velocity.data(), kick});
+void RigidBodies::kick(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick) const {
+    exec::for_each(target, bodies_.n_owned(), BodyKick{a.state, a.frames, a.constituents, x, v, kick});
 }
 
-void RigidBodies::langevin(ParticleStore& store, double decay_t, double decay_r, double temperature,
-                           std::uint64_t seed, std::uint64_t step) {
-    exec::for_each(exec::Host{}, bodies_.n_owned(),
-                   BodyLangevin{state(), frame_table(), constituents(), bodies_.id.data(),
-                                store.position.data(), store.velocity.data(), decay_t, decay_r,
+void RigidBodies::langevin(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double decay_t,
+                           double decay_r, double temperature, std::uint64_t seed, std::uint64_t step) const {
+    exec::for_each(target, bodies_.n_owned(),
+                   BodyLangevin{a.state, a.frames, a.constituents, a.id, x, v, decay_t, decay_r,
                                 temperature, seed, step});
 }
 
-double RigidBodies::kinetic() const {
-    return exec::transform_sum<double>(exec::Host{}, bodies_.n_owned(), BodyKinetic{{state(), frame_table()}});
+double RigidBodies::kinetic(const exec::Target& target, const Arrays& a) const {
+    return exec::transform_sum<double>(target, bodies_.n_owned(), BodyKinetic{{a.state, a.frames}});
 }
 
-Vec3 RigidBodies::kinetic_parts() const {
-    return exec::transform_sum<Vec3>(exec::Host{}, bodies_.n_owned(), BodyKineticParts{state(), frame_table()});
+Vec3 RigidBodies::kinetic_parts(const exec::Target& target, const Arrays& a) const {
+    return exec::transform_sum<Vec3>(target, bodies_.n_owned(), BodyKineticParts{a.state, a.frames});
 }
 
-Vec3 RigidBodies::momentum() const {
-    return exec::transform_sum<Vec3>(exec::Host{}, bodies_.n_owned(), BodyMomentum{state(), frame_table()});
+Vec3 RigidBodies::momentum(const exec::Target& target, const Arrays& a) const {
+    return exec::transform_sum<Vec3>(target, bodies_.n_owned(), BodyMomentum{a.state, a.frames});
 }
 
-Vec3 RigidBodies::angular_momentum(const Vec3& box_length) const {
-    return exec::transform_sum<Vec3>(
-        exec::Host{}, bodies_.n_owned(),
-        BodyAngularMomentum{state(), frame_table(), bodies_.image.data(), box_length});
+Vec3 RigidBodies::angular_momentum(const exec::Target& target, const Arrays& a, const Vec3& box_length) const {
+    return exec::transform_sum<Vec3>(target, bodies_.n_owned(),
+                                     BodyAngularMomentum{a.state, a.frames, a.image, box_length});
 }
 
 }  // namespace emergent::rigid

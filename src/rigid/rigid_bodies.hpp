@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "decomposition/migration.hpp"
+#include "emergent/execution.hpp"
 #include "emergent/particle_store.hpp"
 #include "rigid/body_frame.hpp"
 #include "rigid/body_motion.hpp"
@@ -50,33 +51,47 @@ public:
     /// After particles were reordered: where each body's constituents are.
     void index_constituents(const ParticleStore& store);
 
+    /// Where the loops over bodies read and write: the bodies' arrays, their frames and the
+    /// constituent index, in host memory (host_arrays()) or in a back end's.
+    struct Arrays {
+        BodyState state;
+        FrameTable frames;
+        ConstituentIndex constituents;
+        const std::int64_t* id = nullptr;
+        const Int3* image = nullptr;
+    };
+    /// The store's own arrays (the const passes only read through them).
+    Arrays host_arrays() const;
+    /// The flat tables behind FrameTable and ConstituentIndex, for copying to a back end.
+    const std::vector<double>& frame_masses() const { return frame_mass_; }
+    const std::vector<Vec3>& frame_inertia() const { return frame_inertia_; }
+    const std::vector<std::uint32_t>& frame_first() const { return frame_first_; }
+    const std::vector<Vec3>& frame_positions() const { return frame_positions_; }
+    const std::vector<std::uint32_t>& constituent_first() const { return first_; }
+    const std::vector<std::uint32_t>& constituent_index() const { return index_; }
+
     /// Splitting stages for bodies, durations given (velocity Verlet: kick dt/2 and drift dt):
     /// momentum and angular momentum kicked, then translation and free rotation (NO_SQUISH),
-    /// then constituents placed.
-    void kick_drift(ParticleStore& store, double kick, double drift);
-    void sum_forces(const ParticleStore& store);
-    void kick(ParticleStore& store, double kick);
+    /// then constituents placed. Loops run on `target` over `a` and the constituents' x, v, f
+    /// (the same memory).
+    void kick_drift(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick,
+                    double drift) const;
+    void sum_forces(const exec::Target& target, const Arrays& a, const Vec3* x, const Vec3* f) const;
+    void kick(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick) const;
     /// One step of Langevin dynamics (BodyLangevin) for every owned body.
-    void langevin(ParticleStore& store, double decay_t, double decay_r, double temperature,
-                  std::uint64_t seed, std::uint64_t step);
+    void langevin(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double decay_t,
+                  double decay_r, double temperature, std::uint64_t seed, std::uint64_t step) const;
 
     /// Kinetic energy (translation + rotation), momentum, angular momentum about the origin
     /// (unwrapped centres) of the owned bodies; and their degrees of freedom (6 each).
-    double kinetic() const;
+    double kinetic(const exec::Target& target, const Arrays& a) const;
     /// The same split: translational (x) and rotational (y).
-    Vec3 kinetic_parts() const;
-    Vec3 momentum() const;
-    Vec3 angular_momentum(const Vec3& box_length) const;
+    Vec3 kinetic_parts(const exec::Target& target, const Arrays& a) const;
+    Vec3 momentum(const exec::Target& target, const Arrays& a) const;
+    Vec3 angular_momentum(const exec::Target& target, const Arrays& a, const Vec3& box_length) const;
 
 private:
     Vec3 omega_space(std::size_t b) const;
-    /// The owned bodies' arrays, the frames and the constituent index, for the functors
-    /// (the const passes only read through them).
-    BodyState state() const;
-    FrameTable frame_table() const {
-        return {frame_mass_.data(), frame_inertia_.data(), frame_first_.data(), frame_positions_.data()};
-    }
-    ConstituentIndex constituents() const { return {first_.data(), index_.data()}; }
 
     std::vector<BodyKind> kinds_;
     std::vector<BodyFrame> frames_;
