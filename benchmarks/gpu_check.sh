@@ -119,7 +119,7 @@ scene_checks() {
   run1() { emergent run "$@" --preset tiny --set equilibration_steps=0 --set progress_interval=0 \
              >/dev/null 2>"$dir/err" || { cat "$dir/err"; return 1; }; }
   for scene in lj-fluid granular-bed planar-couette rayleigh-benard rotating-drum taylor-couette \
-               vibrated-sawtooth; do
+               vibrated-sawtooth capsid-assembly; do
     layout=full  # every scene's force terms have a back-end form
     local extra=()
     [ $scene = vibrated-sawtooth ] && extra=(--set steps=5000 --set big_fraction=0.3)
