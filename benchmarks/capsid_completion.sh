@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# capsid-assembly seeded completion: how long an open 59-cluster (the closed shell less one
+# capsomer) takes to insert its last particle from the surrounding monomers. Runs the `small`
+# preset (60 capsomers in explicit solvent, start=open_shell) at the given attraction for each
+# seed, samples the bond census every SAMPLE steps, and tabulates the first sampled time with a
+# complete shell (censored at the run's end when none formed), then the distribution's median
+# and range over the seeds that completed.
+# usage: benchmarks/capsid_completion.sh [ATTRACTION] [OUT]   (defaults: 0.09, the calibrated
+#        default, and /tmp/capsid_completion, big files); SEEDS overrides "11 12 13 14 15 16",
+#        STEPS the run length (1e5), SAMPLE the sample interval (500). Runs already complete in
+#        OUT are kept; the table goes to stdout.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+e=${1:-0.09}
+out=${2:-/tmp/capsid_completion}
+. benchmarks/common.sh
+mkdir -p "$out"
+seeds=${SEEDS:-"11 12 13 14 15 16"}
+steps=${STEPS:-100000}
+sample=${SAMPLE:-500}
+echo "# capsid_completion.sh $e; steps $steps, sample every $sample; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+for seed in $seeds; do
+  dir="$out/e${e}_seed$seed"
+  [ -f "$dir/summary.json" ] && continue
+  "$exe" run capsid-assembly --preset small --set start=open_shell --set attraction="$e" \
+    --set seed="$seed" --set steps="$steps" --set sample_every="$sample" \
+    --set progress_interval=0 -o "$dir" >/dev/null
+done
+/usr/bin/python3 - "$out" "$e" $seeds <<'PY'
+import json, sys
+import h5py
+out, e, seeds = sys.argv[1], sys.argv[2], sys.argv[3:]
+print("# seed  completed_at_tau  largest_at_end  shells_at_end  wall_s")
+done, censored = [], []
+for seed in seeds:
+    d = f"{out}/e{e}_seed{seed}"
+    s = json.load(open(f"{d}/summary.json"))
+    with h5py.File(f"{d}/trajectory.h5", "r") as f:
+        t = f["observables/complete_shells/time"][:]
+        shells = f["observables/complete_shells/value"][:]
+    first = next((float(ti) for ti, n in zip(t, shells) if n >= 1), None)
+    m = s["scene_measures"]
+    (done if first is not None else censored).append(first if first is not None else float(t[-1]))
+    print(f"{seed:5s}  {('%.1f' % first) if first is not None else ('>%.0f' % t[-1]):>16s}"
+          f"  {m['largest_cluster']:14.0f}  {m['complete_shells']:13.0f}  {s['wall_seconds']:6.0f}")
+if done:
+    done.sort()
+    mid = done[len(done) // 2] if len(done) % 2 else 0.5 * (done[len(done) // 2 - 1] + done[len(done) // 2])
+    print(f"# completed {len(done)} of {len(seeds)}: median {mid:.1f} tau, range {done[0]:.1f}-{done[-1]:.1f} tau"
+          + (f"; {len(censored)} censored at {censored[0]:.0f} tau" if censored else ""))
+else:
+    print(f"# none of {len(seeds)} completed within {censored[0]:.0f} tau")
+PY
