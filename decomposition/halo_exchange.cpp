@@ -3,6 +3,7 @@
 #include "halo_exchange.hpp"
 
 #include <cstring>
+#include <stdexcept>
 
 #include "field_packing.hpp"
 #include "ghost_image.hpp"
@@ -29,6 +30,7 @@ void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double widt
                          unsigned fields) {
     fields |= kPosition;
     comm_ = grid.comm();
+    exports_elsewhere_ = false;
     store.resize_ghosts(0);
     swaps_.clear();
     const std::size_t stride = packed_bytes(store, fields);
@@ -125,7 +127,47 @@ void HaloExchange::pack_fields_shifted(ParticleStore& store, unsigned fields, co
     }
 }
 
+void HaloExchange::adopt_plan(const RankGrid& grid, const std::vector<SwapPlan>& plans) {
+    comm_ = grid.comm();
+    wedge_ = grid.global().wedge;
+    swaps_.clear();
+    n_ghost_ = 0;
+    // The ranks of each swap as build() finds them, in its order.
+    std::size_t k = 0;
+    auto take = [&](Swap swap) {
+        if (k >= plans.size() || plans[k].to_self != swap.to_self)
+            throw std::logic_error("HaloExchange::adopt_plan: the swaps are not build()'s");
+        swap.shift = plans[k].shift;
+        swap.turns = plans[k].turns;
+        swap.import_first = plans[k].import_first;
+        swap.import_count = plans[k].import_count;
+        n_ghost_ += swap.import_count;
+        swaps_.push_back(std::move(swap));
+        ++k;
+    };
+    for (int d = 0; d < 3; ++d) {
+        if (d == 2 && wedge_.active())
+            for (int side = 0; side < 2; ++side) {
+                Swap swap;
+                swap.send_rank = swap.recv_rank = MPI_PROC_NULL;
+                swap.to_self = true;
+                take(std::move(swap));
+            }
+        for (int side = 0; side < 2; ++side) {
+            Swap swap;
+            swap.send_rank = grid.neighbour(d, side);
+            swap.recv_rank = grid.neighbour(d, 1 - side);
+            swap.to_self = swap.send_rank == grid.rank() && swap.recv_rank == grid.rank();
+            take(std::move(swap));
+        }
+    }
+    if (k != plans.size()) throw std::logic_error("HaloExchange::adopt_plan: the swaps are not build()'s");
+    exports_elsewhere_ = true;
+}
+
 void HaloExchange::gather(std::vector<Vec3>& field, bool is_position) {
+    if (exports_elsewhere_)
+        throw std::logic_error("HaloExchange: this plan's export lists live on the back end");
     for (const Swap& swap : swaps_) {
         const std::size_t n = swap.export_index.size();
         send_vectors_.resize(n);

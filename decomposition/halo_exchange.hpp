@@ -47,9 +47,16 @@ public:
         int turns;
         std::size_t import_first, import_count;
     };
+    /// Takes the plan of a build made where the particles live (one rank alone: a list build on
+    /// the back end), the swaps given in build()'s order with their shifts, turns and import
+    /// ranges. Their export lists stay there (exec::BackendHalo), so the host's refreshes below
+    /// are refused until the next build().
+    void adopt_plan(const RankGrid& grid, const std::vector<SwapPlan>& plans);
     std::size_t n_swaps() const { return swaps_.size(); }
     SwapPlan swap_plan(std::size_t k) const;
     const std::vector<int>& export_index(std::size_t k) const { return swaps_.at(k).export_index; }
+    /// False after adopt_plan(): the export lists are not here.
+    bool exports_on_host() const { return !exports_elsewhere_; }
     const Wedge& wedge() const { return wedge_; }
     /// Sends swap k's packed copies (host memory) and receives its ghosts' into `recv`.
     void exchange_bytes(std::size_t k, const void* send, std::size_t send_bytes, void* recv,
@@ -80,6 +87,7 @@ private:
     std::vector<char> send_buffer_, recv_buffer_;
     std::vector<Vec3> send_vectors_;
     std::size_t n_ghost_ = 0;
+    bool exports_elsewhere_ = false;  ///< adopt_plan(): the export lists are on the back end
 };
 
 }  // namespace emergent::decomp

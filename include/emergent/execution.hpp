@@ -239,6 +239,29 @@ std::size_t first_index(const Target& target, std::size_t n, const Pred& pred) {
     return first_index(Host{}, n, pred);
 }
 
+/// See the host version; in and out are arrays in the target's memory. The total comes back
+/// to the host (a scalar transfer on a separate back end).
+template <class T>
+T exclusive_scan(const Target& target, const T* in, T* out, std::size_t n) {
+    EMERGENT_ON_DEVICE(exclusive_scan, in, out, n);
+    count_result(target, sizeof(T));
+    return exclusive_scan(Host{}, in, out, n);
+}
+
+/// See the host version; keys and values are arrays in the target's memory.
+inline void sort_pairs(const Target& target, std::uint32_t* keys, std::uint32_t* values,
+                       std::size_t n, int key_bits = 32) {
+    if (target.device) {
+#if defined(__CUDACC__)
+        sort_pairs(on_device(target), keys, values, n, key_bits);
+        return;
+#else
+        refuse_device_loop("sort_pairs");
+#endif
+    }
+    sort_pairs(Host{}, keys, values, n, key_bits);
+}
+
 #undef EMERGENT_ON_DEVICE
 }  // inline namespace
 

@@ -15,7 +15,7 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-12"  // 12: sites, kinetic parts, capsomer
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-13"  // 13: Target-dispatched scan and sort
                                                  //    for ::separate, cuda_launch.cuh and
                                                  //    cuda_algorithms.cuh public (10:
                                                  //    BackendParticles::overlap (9:

@@ -21,6 +21,7 @@
 #include "execution/particle_mirror.hpp"
 #include "integrate/kick_drift.hpp"
 #include "integrate/particle_sums.hpp"
+#include "neighbour/backend_list_build.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "rigid/rigid_bodies.hpp"
@@ -80,6 +81,12 @@ struct Simulation::Engine {
     /// With a mirror, the rebuild test and the ghosts' positions run on the back end too.
     exec::BackendHalo backend_halo;
     const Vec3* reference_on_backend = nullptr;  ///< positions at the last list build
+    /// List builds where the particles live (one rank without bodies), and whether the last
+    /// build was one: then the host's copy of its reference positions is made on demand.
+    BackendListBuild backend_build;
+    bool built_on_backend = false;
+    mutable bool reference_copied = false;
+    mutable std::vector<Vec3> reference_copy;
     /// The rigid bodies' arrays in the back end's memory (with a mirror and bodies), and where
     /// their frames and constituent index are there.
     std::unique_ptr<exec::ParticleMirror> body_mirror;
@@ -264,8 +271,37 @@ struct Simulation::Engine {
         if (!message.empty()) throw InstabilityError(message);
     }
 
-    void rebuild() {
+    /// Owned positions at the last list build (the displacement check's origin), on the host.
+    const std::vector<Vec3>& reference_positions() const {
+        if (!built_on_backend) return list.reference_positions();
+        if (!reference_copied) {
+            reference_copy.resize(store.n_owned());
+            mirror->copy_to_host(reference_copy.data(), reference_on_backend, store.n_owned() * sizeof(Vec3));
+            reference_copied = true;
+        }
+        return reference_copy;
+    }
+
+    /// `on_backend`: the build may run where the particles live (BackendListBuild), moving no
+    /// particle array; the host builds where that does not apply and at initialise and restore.
+    void rebuild(bool on_backend = false) {
         PhaseTimer timer(times.neighbour);
+        if (on_backend && mirror && full_list && BackendListBuild::applies(*grid, bodies())) {
+            if (!boundaries.empty()) agree_on_boundary_faults();
+            if (backend_build.build(target, *mirror, store, *grid, cells, ghost_width(), list.list_cutoff(),
+                                    halo, backend_halo)) {
+                if (!backend_build.fault().empty()) throw InstabilityError(backend_build.fault());
+                list_offset = backend_build.offsets();
+                list_index = backend_build.neighbours();
+                reference_on_backend = backend_build.reference();
+                built_on_backend = true;
+                reference_copied = false;
+                moved_since_build = false;
+                ++rebuilds;
+                return;
+            }
+        }
+        built_on_backend = false;
         // Host code (decomposition, cells, list) that reorders and resizes every array; forces
         // are recomputed after it.
         host_reads(kAllFields & ~kForce);
@@ -422,7 +458,7 @@ struct Simulation::Engine {
                 if (ghost_fields & kVelocity) halo.gather_velocities(store);
             }
         }
-        if (needed) rebuild();
+        if (needed) rebuild(true);
     }
 
     bool is_free(std::size_t i) const { return !store.has_rigid_fields() || store.body[i] < 0; }
@@ -733,7 +769,7 @@ void Simulation::snapshot(StateSnapshot& snap) const {
         fields |= kDiameter;
     snap.owned.copy_owned(s, fields);
     if (e.moved_since_build)
-        snap.reference = e.list.reference_positions();
+        snap.reference = e.reference_positions();
     else
         std::vector<Vec3>().swap(snap.reference);
     if (e.bodies()) {
@@ -756,7 +792,7 @@ void Simulation::restore(const StateSnapshot& snapshot) {
 }
 
 const std::vector<Vec3>& Simulation::list_reference_positions() const {
-    return engine_->list.reference_positions();
+    return engine_->reference_positions();
 }
 
 int Simulation::rank_of(const Vec3& x) const {

@@ -7,6 +7,8 @@
 #include <mpi-ext.h>  // Open MPI's extensions: the CUDA support query
 #endif
 
+#include <stdexcept>
+
 #include "decomposition/ghost_image.hpp"
 #include "emergent/execution.hpp"
 
@@ -24,15 +26,26 @@ bool mpi_reads_device_memory() {
 
 void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror,
                         std::size_t upload_slot) {
+    if (!halo.exports_on_host())
+        throw std::logic_error("BackendHalo::place: the halo's export lists are not on the host");
     index_.clear();
-    first_.assign(1, 0);
+    std::vector<std::size_t> first(1, 0), count;
     for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
         const std::vector<int>& e = halo.export_index(k);
         index_.insert(index_.end(), e.begin(), e.end());
-        first_.push_back(index_.size());
+        first.push_back(index_.size());
+        count.push_back(e.size());
     }
-    index_on_backend_ =
+    const int* all =
         static_cast<const int*>(mirror.upload(upload_slot, index_.data(), index_.size() * sizeof(int)));
+    std::vector<const int*> index;
+    for (std::size_t k = 0; k < count.size(); ++k) index.push_back(all + first[k]);
+    place_on_backend(std::move(index), std::move(count));
+}
+
+void BackendHalo::place_on_backend(std::vector<const int*> index, std::vector<std::size_t> count) {
+    swap_index_ = std::move(index);
+    swap_count_ = std::move(count);
     if (!asked_) direct_ = mpi_reads_device_memory(), asked_ = true;
 }
 
@@ -41,8 +54,8 @@ void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
                          std::size_t scratch_slot) {
     for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
         const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
-        const std::size_t n = first_[k + 1] - first_[k];
-        const int* index = index_on_backend_ + first_[k];
+        const std::size_t n = swap_count_.at(k);
+        const int* index = swap_index_[k];
         const Vec3 shift = is_position ? plan.shift : Vec3{0, 0, 0};
         if (plan.to_self) {
             // Sources are owned particles and earlier swaps' ghosts, all before import_first:

@@ -23,6 +23,9 @@ class BackendHalo {
 public:
     /// After each halo build: every swap's export indices go to the back end as one array.
     void place(const decomp::HaloExchange& halo, ParticleMirror& mirror, std::size_t upload_slot);
+    /// After a build on the back end: swap k's export indices are count[k] ints at index[k],
+    /// already in the back end's memory.
+    void place_on_backend(std::vector<const int*> index, std::vector<std::size_t> count);
     /// Ghost values of `field` (the back end's array) from their owners, along the plan:
     /// positions (shifted across periodic boundaries) or velocities (never shifted); both
     /// rotated across wedge faces.
@@ -30,9 +33,9 @@ public:
                 Vec3* field, bool is_position, std::size_t scratch_slot);
 
 private:
-    std::vector<int> index_;          ///< export indices of all swaps, swap after swap
-    std::vector<std::size_t> first_;  ///< where swap k's begin in index_
-    const int* index_on_backend_ = nullptr;
+    std::vector<int> index_;  ///< export indices of all swaps, swap after swap (place())
+    std::vector<const int*> swap_index_;  ///< where swap k's are on the back end
+    std::vector<std::size_t> swap_count_;
     bool direct_ = false, asked_ = false;  ///< MPI reads device memory (asked once)
 };
 

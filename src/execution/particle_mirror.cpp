@@ -190,6 +190,33 @@ void ParticleMirror::written_on_backend(ParticleStore& store, unsigned fields) {
     });
 }
 
+void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_ghost) {
+    unsigned present = 0;
+    store.for_each_field([&](const FieldSpan& span) { present |= span.field; });
+    if (store.size() != size_ || (backend_stale_ & present & ~static_cast<unsigned>(kForce)))
+        throw std::logic_error("particle mirror: a resize on the back end needs every field there");
+    store.resize_ghosts(n_ghost);
+    const std::size_t n = store.size();
+    store.for_each_field([&](const FieldSpan& span) {
+        Array* a = nullptr;
+        for (auto& candidate : arrays_)
+            if (candidate.field == span.field) a = &candidate;
+        if (!a) throw std::logic_error("particle mirror: a field has no array on the back end");
+        if (n > a->capacity) {
+            const std::size_t capacity = n + n / 32;
+            void* grown = memory_->allocate(capacity * span.element_bytes);
+            memory_->within(grown, a->data, std::min(size_, n) * span.element_bytes);
+            memory_->release(a->data);
+            a->data = grown;
+            a->capacity = capacity;
+        }
+        if (poison_) std::memset(span.data, poison_byte(span.field), n * span.element_bytes);
+    });
+    size_ = n;
+    backend_stale_ &= ~present;
+    host_stale_ |= present;
+}
+
 void ParticleMirror::written_on_host(unsigned fields) {
     backend_stale_ |= fields;
     host_stale_ &= ~fields;

@@ -10,8 +10,9 @@
 namespace emergent {
 
 void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions) {
-    lo_ = lo;
-    hi_ = hi;
+    CellIndex& g = index_;
+    g.lo = lo;
+    g.hi = hi;
     centre_ = 0.5 * (lo + hi);
     const double min_cell = range / std::max(1, subdivisions);
     for (int d = 0; d < 3; ++d) {
@@ -19,14 +20,14 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range,
         const int inner = std::max(1, static_cast<int>(std::floor(len / min_cell)));
         const double width = len / inner;
         // A small domain may give cells wider than asked: then fewer are needed to span range.
-        reach_[d] = std::max(1, static_cast<int>(std::ceil(range / width - 1e-12)));
+        g.reach[d] = std::max(1, static_cast<int>(std::ceil(range / width - 1e-12)));
         // The shell must hold every cell the search reaches from an inner cell.
-        const int layers = std::max(reach_[d], static_cast<int>(std::ceil(shell / width - 1e-12)));
-        n_[d] = inner + 2 * layers;
-        origin_[d] = lo[d] - layers * width;
-        first_inner_[d] = layers;
-        end_inner_[d] = layers + inner;
-        inverse_width_[d] = 1.0 / width;
+        const int layers = std::max(g.reach[d], static_cast<int>(std::ceil(shell / width - 1e-12)));
+        g.n[d] = inner + 2 * layers;
+        g.origin[d] = lo[d] - layers * width;
+        g.first_inner[d] = layers;
+        g.end_inner[d] = layers + inner;
+        g.inverse_width[d] = 1.0 / width;
     }
     // Binned positions lie in the grid (owned in the domain, ghosts in the shell), within
     // `extent` of its centre in each coordinate. Each is rounded by at most extent 2^-24, a
@@ -34,24 +35,24 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range,
     // adds a few 2^-24 of the range. Doubled for margin (and for particles just outside the
     // grid): ~1e-6 of the grid's size.
     double extent = 0;
-    for (int d = 0; d < 3; ++d) extent = std::max(extent, 0.5 * n_[d] / inverse_width_[d]);
+    for (int d = 0; d < 3; ++d) extent = std::max(extent, 0.5 * g.n[d] / g.inverse_width[d]);
     const double unit = std::ldexp(1.0, -24);
     binned_error_ = 2 * (2 * std::sqrt(3.0) * 2 * extent * unit + 4 * range * unit);
     inner_.assign(n_cells(), 0);
     // Mark cells that lie inside the domain: their index range excludes the ghost layers.
-    for (int z = 0; z < n_[2]; ++z)
-        for (int y = 0; y < n_[1]; ++y)
-            for (int x = 0; x < n_[0]; ++x) {
-                const Vec3 centre{origin_[0] + (x + 0.5) / inverse_width_[0],
-                                  origin_[1] + (y + 0.5) / inverse_width_[1],
-                                  origin_[2] + (z + 0.5) / inverse_width_[2]};
+    for (int z = 0; z < g.n[2]; ++z)
+        for (int y = 0; y < g.n[1]; ++y)
+            for (int x = 0; x < g.n[0]; ++x) {
+                const Vec3 centre{g.origin[0] + (x + 0.5) / g.inverse_width[0],
+                                  g.origin[1] + (y + 0.5) / g.inverse_width[1],
+                                  g.origin[2] + (z + 0.5) / g.inverse_width[2]};
                 bool in = true;
                 for (int d = 0; d < 3; ++d) in = in && centre[d] > lo[d] && centre[d] < hi[d];
                 const int c[3] = {x, y, z};
                 bool deep = in;
                 for (int d = 0; d < 3; ++d)
-                    deep = deep && c[d] - reach_[d] >= first_inner_[d] && c[d] + reach_[d] < end_inner_[d];
-                inner_[(z * n_[1] + y) * n_[0] + x] = deep ? 2 : in ? 1 : 0;
+                    deep = deep && c[d] - g.reach[d] >= g.first_inner[d] && c[d] + g.reach[d] < g.end_inner[d];
+                inner_[(z * g.n[1] + y) * g.n[0] + x] = deep ? 2 : in ? 1 : 0;
             }
 }
 

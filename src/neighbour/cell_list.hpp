@@ -10,6 +10,54 @@
 
 namespace emergent {
 
+/// Where a position falls in a CellList's grid, as a value the back end's loops carry: the same
+/// answer in a kernel as in the host's CellList::cell_of.
+struct CellIndex {
+    Vec3 origin{}, lo{}, hi{};
+    Vec3 inverse_width{1, 1, 1};
+    Int3 first_inner{0, 0, 0}, end_inner{1, 1, 1};  ///< inner cells per axis
+    Int3 n{1, 1, 1};
+    Int3 reach{1, 1, 1};
+
+    /// Linear index of the cell holding x (positions just outside the grid are clamped).
+    EMERGENT_HD int cell_of(const Vec3& x) const {
+        int c[3];
+        for (int d = 0; d < 3; ++d) {
+            int k = static_cast<int>((x[d] - origin[d]) * inverse_width[d]);
+            // The domain faces decide which side a point is on: rounding in the line above can
+            // put a point lying on a face (a lattice start puts many there) one cell off, a
+            // ghost into the domain or an owned particle into the shell.
+            if (x[d] < lo[d])
+                k = k < first_inner[d] - 1 ? k : first_inner[d] - 1;
+            else if (x[d] >= hi[d])
+                k = k > end_inner[d] ? k : end_inner[d];
+            else
+                k = k < first_inner[d] ? first_inner[d] : (k > end_inner[d] - 1 ? end_inner[d] - 1 : k);
+            c[d] = k < 0 ? 0 : (k >= n[d] ? n[d] - 1 : k);
+        }
+        return (c[2] * n[1] + c[1]) * n[0] + c[0];
+    }
+    EMERGENT_HD int n_cells() const { return n[0] * n[1] * n[2]; }
+
+    /// Calls visit(j) for the members j of every cell within reach of the cell holding x:
+    /// cells z, y, x outermost first, members in slot order (cell c's are member[start[c] ..
+    /// start[c + 1])). The one search order of the host's lists and the back end's.
+    template <class Visit>
+    EMERGENT_HD void visit_nearby(const Vec3& x, const std::uint32_t* start, const std::uint32_t* member,
+                                  Visit& visit) const {
+        const int c = cell_of(x);
+        const int cx = c % n.x, cy = (c / n.x) % n.y, cz = c / (n.x * n.y);
+        for (int dz = -reach.z; dz <= reach.z; ++dz)
+            for (int dy = -reach.y; dy <= reach.y; ++dy)
+                for (int dx = -reach.x; dx <= reach.x; ++dx) {
+                    const int ax = cx + dx, ay = cy + dy, az = cz + dz;
+                    if (ax < 0 || ay < 0 || az < 0 || ax >= n.x || ay >= n.y || az >= n.z) continue;
+                    const int c2 = (az * n.y + ay) * n.x + ax;
+                    for (std::uint32_t s = start[c2]; s < start[c2 + 1]; ++s) visit(member[s]);
+                }
+    }
+};
+
 /// Regular cells over [lo - shell, hi + shell) whose faces fall on the domain faces, so every
 /// cell is either inside the domain (holds owned particles only) or in the ghost shell (holds
 /// ghosts only). Cells are at least range / subdivisions wide, so a pair closer than `range`
@@ -26,23 +74,9 @@ public:
     void setup(const Vec3& lo, const Vec3& hi, double shell, double range, int subdivisions = 1);
 
     /// Linear index of the cell holding x (positions just outside the grid are clamped).
-    int cell_of(const Vec3& x) const {
-        int c[3];
-        for (int d = 0; d < 3; ++d) {
-            int k = static_cast<int>((x[d] - origin_[d]) * inverse_width_[d]);
-            // The domain faces decide which side a point is on: rounding in the line above can
-            // put a point lying on a face (a lattice start puts many there) one cell off, a
-            // ghost into the domain or an owned particle into the shell.
-            if (x[d] < lo_[d])
-                k = std::min(k, first_inner_[d] - 1);
-            else if (x[d] >= hi_[d])
-                k = std::max(k, end_inner_[d]);
-            else
-                k = std::clamp(k, first_inner_[d], end_inner_[d] - 1);
-            c[d] = k < 0 ? 0 : (k >= n_[d] ? n_[d] - 1 : k);
-        }
-        return (c[2] * n_[1] + c[1]) * n_[0] + c[0];
-    }
+    int cell_of(const Vec3& x) const { return index_.cell_of(x); }
+    /// The grid as the back end's loops carry it.
+    const CellIndex& index() const { return index_; }
 
     /// Order that sorts the first n particles by cell, and by id within a cell:
     /// order[k] = old index of new particle k. Depending only on positions and ids (not on the
@@ -57,10 +91,10 @@ public:
     /// cells are known and only the others are looked up. The same result as bin().
     void bin_after_sort(const Vec3* x, std::size_t n);
 
-    Int3 shape() const { return {n_[0], n_[1], n_[2]}; }
+    Int3 shape() const { return index_.n; }
     /// Cells to search on each side along each axis for pairs within the range.
-    Int3 reach() const { return {reach_[0], reach_[1], reach_[2]}; }
-    int n_cells() const { return n_[0] * n_[1] * n_[2]; }
+    Int3 reach() const { return index_.reach; }
+    int n_cells() const { return index_.n_cells(); }
     bool is_inner(int cell) const { return inner_[cell] != 0; }
     /// An inner cell whose whole search stencil (reach cells each way) is inner.
     bool is_deep(int cell) const { return inner_[cell] == 2; }
@@ -69,6 +103,8 @@ public:
     /// Slots of cell c are [first(c), first(c + 1)) in members and binned positions.
     std::uint32_t first(int cell) const { return start_[cell]; }
     const std::uint32_t* members() const { return members_.data(); }
+    /// first(c) for every cell and one past the last: n_cells() + 1 entries.
+    const std::uint32_t* starts() const { return start_.data(); }
     /// Positions in cell order, in single precision relative to the grid's centre (a copy made
     /// by bin(), half the bytes of the positions), so a search streams through memory.
     const BinnedPoint* binned_positions() const { return binned_.data(); }
@@ -78,7 +114,9 @@ public:
     double binned_distance_error() const { return binned_error_; }
     /// Volume of the grid, ghost shell included.
     double grid_volume() const {
-        return double(n_[0]) * n_[1] * n_[2] / (inverse_width_[0] * inverse_width_[1] * inverse_width_[2]);
+        const Int3& n = index_.n;
+        const Vec3& w = index_.inverse_width;
+        return double(n[0]) * n[1] * n[2] / (w[0] * w[1] * w[2]);
     }
 
 private:
@@ -86,11 +124,7 @@ private:
     /// start offsets.
     void count(const Vec3* x, std::size_t n, std::size_t known = 0);
 
-    Vec3 origin_{}, lo_{}, hi_{};
-    double inverse_width_[3] = {1, 1, 1};
-    int first_inner_[3] = {0, 0, 0}, end_inner_[3] = {1, 1, 1};  ///< inner cells per axis
-    int n_[3] = {1, 1, 1};
-    int reach_[3] = {1, 1, 1};
+    CellIndex index_;
     std::vector<char> inner_;  ///< per cell: 0 ghost, 1 inner, 2 inner with its stencil inner
     std::vector<std::uint32_t> start_, members_, cell_;
     std::vector<std::uint32_t> sorted_cell_;  ///< cells of the last sort_order, in its order

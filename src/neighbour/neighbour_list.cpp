@@ -21,28 +21,17 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
     const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
     const std::int64_t* body = store.has_rigid_fields() ? store.body.data() : nullptr;
-    const Int3 shape = cells.shape(), reach = cells.reach();
     offset_.assign(n_owned + 1, 0);
     neighbour_.clear();
+    const CellIndex& grid = cells.index();
     for (std::size_t i = 0; i < n_owned; ++i) {
-        const int c = cells.cell_of(x[i]);
-        const int cx = c % shape.x, cy = (c / shape.x) % shape.y, cz = c / (shape.x * shape.y);
-        for (int dz = -reach.z; dz <= reach.z; ++dz)
-            for (int dy = -reach.y; dy <= reach.y; ++dy)
-                for (int dx = -reach.x; dx <= reach.x; ++dx) {
-                    const int ax = cx + dx, ay = cy + dy, az = cz + dz;
-                    if (ax < 0 || ay < 0 || az < 0 || ax >= shape.x || ay >= shape.y || az >= shape.z)
-                        continue;
-                    const int c2 = (az * shape.y + ay) * shape.x + ax;
-                    for (const std::uint32_t* pj = cells.members_begin(c2); pj != cells.members_end(c2);
-                         ++pj) {
-                        const std::uint32_t j = *pj;
-                        if (full ? j == i : j <= i) continue;
-                        if (body && body[i] >= 0 && body[i] == body[j]) continue;  // same body
-                        const Vec3 r = x[i] - x[j];
-                        if (dot(r, r) < r2max) neighbour_.push_back(j);
-                    }
-                }
+        auto consider = [&](std::uint32_t j) {
+            if (full ? j == i : j <= i) return;
+            if (body && body[i] >= 0 && body[i] == body[j]) return;  // same body
+            const Vec3 r = x[i] - x[j];
+            if (dot(r, r) < r2max) neighbour_.push_back(j);
+        };
+        grid.visit_nearby(x[i], cells.starts(), cells.members(), consider);
         offset_[i + 1] = static_cast<std::uint32_t>(neighbour_.size());
     }
     n_pairs_ = neighbour_.size();

@@ -1,0 +1,88 @@
+// SPDX-License-Identifier: MIT
+// The list build where the particles live: migration home, the cell order, ghosts, cells and
+// the full Verlet list, all as loops through the execution layer on the back end's arrays, so
+// a build moves no particle array between host and device (only counts come back). It gives
+// the host build's particle order, ghosts and list bit for bit (list_build_loops.hpp), so a run
+// continues the same whichever builds. It covers what one rank does alone without rigid bodies
+// (periodic, walled and wedge regions); elsewhere the engine builds on the host.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "decomposition/halo_exchange.hpp"
+#include "decomposition/rank_grid.hpp"
+#include "emergent/execution.hpp"
+#include "emergent/particle_store.hpp"
+#include "execution/backend_halo.hpp"
+#include "execution/particle_mirror.hpp"
+#include "neighbour/cell_list.hpp"
+#include "neighbour/list_build_loops.hpp"
+
+namespace emergent {
+
+class BackendListBuild {
+public:
+    /// Whether this build applies: one rank, no rigid bodies (their constituents are placed by
+    /// host code), ids below 2^32 (the sort keys; checked at each build).
+    static bool applies(const decomp::RankGrid& grid, bool bodies);
+
+    /// Builds on the back end. Every field but forces must be current there or on the host
+    /// (the mirror uploads what is stale); afterwards all live on the back end, the store holds
+    /// the new size, `halo` and `backend_halo` the ghost plan. Returns false, having changed
+    /// nothing, where ids do not fit the sort keys (the caller builds on the host); returns true
+    /// with fault() set where a particle could not be brought home (the caller stops).
+    bool build(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+               const decomp::RankGrid& grid, const CellList& cells, double ghost_width,
+               double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo);
+
+    /// The first particle that could not be brought home, described as the host's migration
+    /// does; empty if none.
+    const std::string& fault() const { return fault_; }
+    /// The full list on the back end (CSR: neighbours of i are index[offset[i] .. offset[i+1])).
+    const std::uint32_t* offsets() const { return offsets_; }
+    const std::uint32_t* neighbours() const { return neighbours_; }
+    std::size_t n_pairs() const { return n_pairs_; }
+    /// Owned positions at the build, on the back end.
+    const Vec3* reference() const { return reference_; }
+
+    /// The scratch slots of the mirror this build uses, from `first` on (the engine's others
+    /// lie below).
+    explicit BackendListBuild(std::size_t first_slot = 16) : slot_(first_slot) {}
+
+private:
+    /// Migration on one rank; false with fault_ set where a particle cannot come home.
+    bool come_home(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                   const decomp::RankGrid& grid);
+    void sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
+                             ParticleStore& store, const CellList& cells, int id_bits);
+    void make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                     const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
+                     exec::BackendHalo& backend_halo);
+    /// Appends as ghosts the images of the candidates flagged by `near` (over the n_candidates
+    /// particles present before the swap's phase): the next swap of the plan.
+    void append_images(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                       build::NearFace near, std::size_t n_candidates, decomp::HaloExchange::SwapPlan plan,
+                       const Wedge& wedge);
+    void list(const exec::Target& target, exec::ParticleMirror& mirror, const ParticleStore& store,
+              const CellList& cells, double list_range);
+
+    std::uint32_t* buffer(exec::ParticleMirror& mirror, std::size_t which, std::size_t count) {
+        return static_cast<std::uint32_t*>(mirror.scratch(slot_ + which, count * sizeof(std::uint32_t)));
+    }
+    enum Buffer : std::size_t { kKeys, kValues, kFlags, kGather, kCellStart, kOffsets, kNeighbours,
+                                kReference, kFaults, kSwapIndex0 };  // then one per swap (up to 8)
+
+    std::size_t slot_;
+    std::string fault_;
+    const std::uint32_t *offsets_ = nullptr, *neighbours_ = nullptr;
+    std::size_t n_pairs_ = 0;
+    const Vec3* reference_ = nullptr;
+    std::vector<decomp::HaloExchange::SwapPlan> plans_;
+    std::vector<const int*> swap_index_;
+    std::vector<std::size_t> swap_count_;
+};
+
+}  // namespace emergent

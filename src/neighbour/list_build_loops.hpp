@@ -1,0 +1,221 @@
+// SPDX-License-Identifier: MIT
+// The per-particle loops of a list build where the particles live (BackendListBuild): bring
+// particles home across periodic and wedge boundaries, order them by cell and id, make their
+// ghost images, bin and list. Each loop gives the host build's result bit for bit (the same
+// order, the same images, the same list), so the back end and the host agree exactly.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "emergent/box.hpp"
+#include "emergent/vec3.hpp"
+#include "neighbour/cell_list.hpp"
+
+namespace emergent::build {
+
+/// What stopped a particle from coming home (fault codes; 0: none), ordered as the host's
+/// migration finds them: axis by axis; on an axis, closed faces first (by index), then long
+/// jumps through side 0, then through side 1 (each by index). So the smallest code, and the
+/// smallest index with it, is the particle the host reports.
+EMERGENT_HD inline int fault_code(int axis, bool closed_face, int side) {
+    return 1 + 3 * axis + (closed_face ? 0 : 1 + side);
+}
+
+/// One rank's migration: a particle past a cut face of a wedge comes back turned; one past a
+/// periodic face wraps (its image count follows); one past a closed face is a fault, as is one
+/// still outside after wrapping (it jumped more than a box length). fault[i] is the fault's
+/// code, 0 if none; a particle with a fault stays where it was found (the run stops).
+struct ComeHome {
+    Vec3* x;
+    Vec3* v;
+    Int3* image;
+    Wedge wedge;
+    Vec3 lo, hi, length;
+    int periodic[3];  ///< 1 where the axis wraps (its faces have this rank behind them)
+    int* fault;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        if (wedge.active()) {
+            const int turns = wedge.turns_into(x[i]);
+            if (turns) {
+                x[i] = wedge.rotate(x[i], turns);
+                v[i] = wedge.rotate(v[i], turns);
+            }
+        }
+        fault[i] = 0;
+        for (int d = 0; d < 3; ++d) {
+            const int side = x[i][d] < lo[d] ? 0 : (x[i][d] >= hi[d] ? 1 : -1);
+            if (side < 0) continue;
+            if (!periodic[d]) {
+                fault[i] = fault_code(d, true, side);
+                return;
+            }
+            x[i][d] += side == 0 ? length[d] : -length[d];
+            image[i][d] += side == 0 ? -1 : 1;
+            if (x[i][d] < lo[d] || x[i][d] >= hi[d]) {
+                fault[i] = fault_code(d, false, side);
+                return;
+            }
+        }
+    }
+};
+
+/// -fault[i], or -infinity where there is none: the largest is minus the first fault's code.
+struct FaultOrder {
+    const int* fault;
+    EMERGENT_HD double operator()(std::size_t i) const { return fault[i] ? -double(fault[i]) : -1e300; }
+};
+
+/// fault[i] == code: the first particle with a given fault.
+struct HasFault {
+    const int* fault;
+    int code;
+    EMERGENT_HD bool operator()(std::size_t i) const { return fault[i] == code; }
+};
+
+/// An id as a sort key's magnitude (a negative id counts as too large for the keys).
+struct IdMagnitude {
+    const std::int64_t* id;
+    EMERGENT_HD double operator()(std::size_t i) const { return id[i] < 0 ? 1e300 : double(id[i]); }
+};
+
+/// key[i] = id[i] (ids below 2^32), value[i] = i: the first sort, by id.
+struct IdKey {
+    const std::int64_t* id;
+    std::uint32_t* key;
+    std::uint32_t* value;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        key[i] = static_cast<std::uint32_t>(id[i]);
+        value[i] = static_cast<std::uint32_t>(i);
+    }
+};
+
+/// key[k] = cell of particle value[k] (or of k itself where value is null, value[k] set to k):
+/// the second, stable, sort then orders by cell, and by the first sort's key within a cell.
+struct CellKey {
+    const Vec3* x;
+    CellIndex cells;
+    std::uint32_t* key;
+    std::uint32_t* value;
+    bool identity;
+    EMERGENT_HD void operator()(std::size_t k) const {
+        if (identity) value[k] = static_cast<std::uint32_t>(k);
+        key[k] = static_cast<std::uint32_t>(cells.cell_of(x[value[k]]));
+    }
+};
+
+/// to[k] = from[order[k]], for elements of `words` 32-bit words: one particle array of any
+/// field moved into a new order, or ghosts copied from their owners (to past the owners).
+template <class Index>
+struct GatherWords {
+    const std::uint32_t* from;
+    std::uint32_t* to;
+    const Index* order;
+    unsigned words;
+    EMERGENT_HD void operator()(std::size_t k) const {
+        const std::size_t a = static_cast<std::size_t>(order[k]) * words, b = k * words;
+        for (unsigned w = 0; w < words; ++w) to[b + w] = from[a + w];
+    }
+};
+
+/// flag[i] = 1 where particle i lies within the ghost width of a face, for i < n; flag[n] = 0
+/// (the scan that follows then ends in the count). The face: (axis, side) of the domain, or
+/// with axis -1 a cut face of the wedge (side 0 theta = 0, side 1 theta = 2 pi / n).
+struct NearFace {
+    const Vec3* x;
+    int axis, side;
+    Real edge;  ///< a domain face: lo + width (side 0) or hi - width (side 1)
+    Wedge wedge;
+    Real width;  ///< a wedge face: the ghost width
+    std::size_t n;
+    std::uint32_t* flag;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        if (i == n) {
+            flag[i] = 0;
+            return;
+        }
+        bool near;
+        if (axis < 0)
+            near = (side == 0 ? Wedge::distance_to_first_face(x[i]) : wedge.distance_to_second_face(x[i])) < width;
+        else
+            near = side == 0 ? x[i][axis] < edge : x[i][axis] >= edge;
+        flag[i] = near ? 1u : 0u;
+    }
+};
+
+/// After an exclusive scan of the flags (slot[i]), the flagged indices in order:
+/// out[slot[i]] = i where slot[i + 1] != slot[i].
+struct Compact {
+    const std::uint32_t* slot;
+    int* out;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        if (slot[i + 1] != slot[i]) out[slot[i]] = static_cast<int>(i);
+    }
+};
+
+/// A ghost's velocity from its owner's, turned across a wedge face (never shifted, and no
+/// zero added: the host's copy). Positions use decomp::GhostImage, as the refreshes do.
+struct TurnedCopy {
+    const Vec3* in;
+    const int* index;
+    Vec3* out;
+    Wedge wedge;
+    int turns;
+    EMERGENT_HD void operator()(std::size_t k) const { out[k] = wedge.rotate(in[index[k]], turns); }
+};
+
+/// start[c] = the first slot of cell c in the keys sorted by cell (n_cells + 1 entries; the
+/// last is n): the cells' ranges of members.
+struct CellStart {
+    const std::uint32_t* key;
+    std::size_t n;
+    std::uint32_t* start;
+    EMERGENT_HD void operator()(std::size_t c) const {
+        std::size_t a = 0, b = n;
+        while (a < b) {
+            const std::size_t m = a + (b - a) / 2;
+            if (key[m] < c)
+                a = m + 1;
+            else
+                b = m;
+        }
+        start[c] = static_cast<std::uint32_t>(a);
+    }
+};
+
+/// Full list of owned particle i: every j != i (owned or ghost, not of i's body) within the
+/// list range, cells visited z, y, x outermost first and members in index order: the host's
+/// NeighbourList::build_full order. Counting pass (offset null): out[i] = the count, and
+/// out[n_owned] = 0 for the scan. Listing pass: j's from out[offset[i]] on.
+struct ListNeighbours {
+    const Vec3* x;
+    const std::int64_t* body;  ///< null: no bodies
+    CellIndex cells;
+    const std::uint32_t* start;
+    const std::uint32_t* member;
+    Real range_sq;
+    std::size_t n_owned;
+    const std::uint32_t* offset;
+    std::uint32_t* out;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        if (i == n_owned) {
+            if (!offset) out[i] = 0;
+            return;
+        }
+        const Vec3 xi = x[i];
+        std::uint32_t count = 0;
+        auto consider = [&](std::uint32_t j) {
+            if (j == i) return;
+            if (body && body[i] >= 0 && body[i] == body[j]) return;  // same body
+            const Vec3 r = xi - x[j];
+            if (dot(r, r) < range_sq) {
+                if (offset) out[offset[i] + count] = j;
+                ++count;
+            }
+        };
+        cells.visit_nearby(xi, start, member, consider);
+        if (!offset) out[i] = count;
+    }
+};
+
+}  // namespace emergent::build
