@@ -9,7 +9,15 @@
 #include <map>
 #include <utility>
 
+#include "decomposition/halo_exchange.hpp"
+#include "decomposition/migration.hpp"
+#include "decomposition/rank_grid.hpp"
+#include "emergent/error.hpp"
 #include "emergent/execution.hpp"
+#include "execution/backend_halo.hpp"
+#include "execution/particle_mirror.hpp"
+#include "neighbour/backend_list_build.hpp"
+#include "neighbour/cell_list.hpp"
 #include "support/scene_fixture.hpp"
 
 using namespace emergent;
@@ -211,4 +219,39 @@ TEST(BackendTraffic, RigidBodiesStayOnTheBackend) {
         EXPECT_EQ(t.rebuild_fewest, t.rebuild_most) << run[0];
         EXPECT_LE(t.rebuild_most, 24u) << run[0];
     }
+}
+
+TEST(BackendListBuild, NamesAParticleThatCannotComeHomeAsTheHostsMigrationDoes) {
+    // A box closed along y: two particles left through the closed faces, one of them after
+    // crossing the periodic x face too. The host's migration and the back end's build name the
+    // same particle, at the same (wrapped) position, in the same words.
+    Box box;
+    box.hi = {10, 10, 10};
+    box.periodic[1] = false;
+    decomp::RankGrid grid(MPI_COMM_SELF, box);
+    ParticleStore start;
+    const Vec3 places[] = {{1, 1, 1}, {10.25, 10.5, 2}, {5, 5, 5}, {9, 2, 3}, {4, -0.5, 4}};
+    const std::int64_t ids[] = {0, 3, 1, 2, 7};
+    for (int k = 0; k < 5; ++k) start.add_owned(places[k], {0.5, 0, 0}, 0, ids[k]);
+    std::string host_says;
+    {
+        ParticleStore s = start;
+        decomp::Migration migration;
+        try {
+            migration.apply(s, grid);
+        } catch (const InstabilityError& e) {
+            host_says = e.what();
+        }
+    }
+    ASSERT_EQ(host_says, "particle id 3 at (0.25, 10.5, 2) left the region through a closed boundary along y");
+    ParticleStore s = start;
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    CellList cells;
+    cells.setup(grid.lo(), grid.hi(), 2.0, 2.0);
+    decomp::HaloExchange halo;
+    exec::BackendHalo backend_halo;
+    BackendListBuild list_build;
+    const exec::Target checking{false, true, nullptr};
+    ASSERT_TRUE(list_build.build(checking, mirror, s, grid, cells, 2.0, 2.0, halo, backend_halo));
+    EXPECT_EQ(list_build.fault(), host_says);
 }
