@@ -7,8 +7,9 @@
 # and range over the seeds that completed.
 # usage: benchmarks/capsid_completion.sh [ATTRACTION] [OUT]   (defaults: 0.09, the calibrated
 #        default, and /tmp/capsid_completion, big files); SEEDS overrides "11 12 13 14 15 16",
-#        STEPS the run length (1e5), SAMPLE the sample interval (500). Runs already complete in
-#        OUT are kept; the table goes to stdout.
+#        STEPS the run length (1e5), SAMPLE the sample interval (500), SETS further settings
+#        (e.g. "solvent=implicit capsomers=120": more monomers around the gap). Runs already
+#        complete in OUT are kept (use one OUT per SETS); the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 e=${1:-0.09}
@@ -18,14 +19,16 @@ mkdir -p "$out"
 seeds=${SEEDS:-"11 12 13 14 15 16"}
 steps=${STEPS:-100000}
 sample=${SAMPLE:-500}
-echo "# capsid_completion.sh $e; steps $steps, sample every $sample; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+sets=()
+for kv in ${SETS:-}; do sets+=(--set "$kv"); done
+echo "# capsid_completion.sh $e; steps $steps, sample every $sample; sets: ${SETS:-none}; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
 echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
 for seed in $seeds; do
   dir="$out/e${e}_seed$seed"
   [ -f "$dir/summary.json" ] && continue
   "$exe" run capsid-assembly --preset small --set start=open_shell --set attraction="$e" \
     --set seed="$seed" --set steps="$steps" --set sample_every="$sample" \
-    --set progress_interval=0 -o "$dir" >/dev/null
+    --set progress_interval=0 "${sets[@]}" -o "$dir" >/dev/null
 done
 /usr/bin/python3 - "$out" "$e" $seeds <<'PY'
 import json, sys
