@@ -54,43 +54,10 @@ DeviceInfo select_device() {
     return info;
 }
 
-int lanes_for(std::size_t particles, double mean_neighbours, int multiprocessors) {
-    const double wanted = 2048.0 * multiprocessors;
-    int lanes = 1;
-    while (lanes < 32 && double(particles) * lanes < wanted && mean_neighbours >= 3.0 * (2 * lanes)) lanes *= 2;
-    return lanes;
-}
-
 std::size_t device_memory_in_use() {
     std::size_t free = 0, total = 0;
     EMERGENT_CUDA_CHECK(cudaMemGetInfo(&free, &total));
     return total - free;
-}
-
-double copy_bandwidth(std::size_t bytes, int repeats) {
-    void *a = nullptr, *b = nullptr;
-    EMERGENT_CUDA_CHECK(cudaMalloc(&a, bytes));
-    EMERGENT_CUDA_CHECK(cudaMalloc(&b, bytes));
-    EMERGENT_CUDA_CHECK(cudaMemset(a, 1, bytes));  // real data, not untouched pages
-    cudaEvent_t t0, t1;
-    EMERGENT_CUDA_CHECK(cudaEventCreate(&t0));
-    EMERGENT_CUDA_CHECK(cudaEventCreate(&t1));
-    std::vector<float> ms;
-    for (int r = 0; r < repeats + 1; ++r) {  // the first copy warms up and is dropped
-        EMERGENT_CUDA_CHECK(cudaEventRecord(t0));
-        EMERGENT_CUDA_CHECK(cudaMemcpy(b, a, bytes, cudaMemcpyDeviceToDevice));
-        EMERGENT_CUDA_CHECK(cudaEventRecord(t1));
-        EMERGENT_CUDA_CHECK(cudaEventSynchronize(t1));
-        float e = 0;
-        EMERGENT_CUDA_CHECK(cudaEventElapsedTime(&e, t0, t1));
-        if (r > 0) ms.push_back(e);
-    }
-    cudaEventDestroy(t0);
-    cudaEventDestroy(t1);
-    cudaFree(a);
-    cudaFree(b);
-    std::sort(ms.begin(), ms.end());
-    return 2.0 * double(bytes) / (1e-3 * ms[ms.size() / 2]);
 }
 
 }  // namespace emergent::gpu
