@@ -282,11 +282,12 @@ struct Simulation::Engine {
         return reference_copy;
     }
 
-    /// `on_backend`: the build may run where the particles live (BackendListBuild), moving no
-    /// particle array; the host builds where that does not apply and at initialise and restore.
+    /// `on_backend`: the build may run where the particles live (BackendListBuild; on one rank
+    /// it moves no particle array); the host builds where that does not apply (rigid bodies,
+    /// the half list) and at initialise and restore.
     void rebuild(bool on_backend = false) {
         PhaseTimer timer(times.neighbour);
-        if (on_backend && mirror && full_list && BackendListBuild::applies(*grid, bodies())) {
+        if (on_backend && mirror && full_list && BackendListBuild::applies(bodies())) {
             if (!boundaries.empty()) agree_on_boundary_faults();
             if (backend_build.build(target, *mirror, store, *grid, cells, ghost_width(), list.list_cutoff(),
                                     halo, backend_halo)) {
@@ -298,6 +299,7 @@ struct Simulation::Engine {
                 reference_copied = false;
                 moved_since_build = false;
                 ++rebuilds;
+                check_count();
                 return;
             }
         }
@@ -343,6 +345,11 @@ struct Simulation::Engine {
             place_constituents();
         }
         ++rebuilds;
+        check_count();
+    }
+
+    /// After a build: no particle was lost or made on the way. Collective.
+    void check_count() const {
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
         if (n != n_global) {
             std::ostringstream msg;

@@ -190,11 +190,12 @@ void ParticleMirror::written_on_backend(ParticleStore& store, unsigned fields) {
     });
 }
 
-void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_ghost) {
+void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_owned, std::size_t n_ghost) {
     unsigned present = 0;
     store.for_each_field([&](const FieldSpan& span) { present |= span.field; });
     if (store.size() != size_ || (backend_stale_ & present & ~static_cast<unsigned>(kForce)))
         throw std::logic_error("particle mirror: a resize on the back end needs every field there");
+    if (n_owned != store.n_owned()) store.resize_owned(n_owned);
     store.resize_ghosts(n_ghost);
     const std::size_t n = store.size();
     store.for_each_field([&](const FieldSpan& span) {

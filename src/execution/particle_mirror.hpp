@@ -40,11 +40,11 @@ public:
     /// copies are stale.
     void written_on_host(unsigned fields);
 
-    /// The store takes `n_ghost` ghosts after its owned particles, on the back end: each array
-    /// keeps its first min(old, new) elements there, and the host's copies of every field are
-    /// stale (poisoned in the checking variant). For a list build on the back end; every field
-    /// but forces (recomputed after a build) must be current on the back end.
-    void resize_on_backend(ParticleStore& store, std::size_t n_ghost);
+    /// The store takes `n_owned` owned particles and `n_ghost` ghosts after them, on the back
+    /// end: each array keeps its first min(old, new) elements there, and the host's copies of
+    /// every field are stale (poisoned in the checking variant). For a list build on the back
+    /// end; every field but forces (recomputed after a build) must be current on the back end.
+    void resize_on_backend(ParticleStore& store, std::size_t n_owned, std::size_t n_ghost);
     /// Calls visit(field, element_bytes, data) for each of the back end's particle arrays.
     template <class Visitor>
     void for_each_array(Visitor&& visit) const {

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: MIT
 // The list build on the back end's arrays, step by step as the host's (Simulation's rebuild:
 // migration, cell order, halo, cells, full list), each step a loop, scan or sort of the
-// execution layer.
+// execution layer; what crosses a domain face is packed on the back end and staged through
+// host memory for MPI.
 #include "neighbour/backend_list_build.hpp"
+
+#include <mpi.h>
 
 #include <algorithm>
 #include <cmath>
@@ -10,6 +13,7 @@
 #include <stdexcept>
 
 #include "decomposition/ghost_image.hpp"
+#include "decomposition/reductions.hpp"
 #include "neighbour/list_build_loops.hpp"
 
 namespace emergent {
@@ -21,11 +25,10 @@ int bits_for(std::size_t n) {
     while (bits < 32 && (std::size_t{1} << bits) < n) ++bits;
     return bits;
 }
+constexpr int kCountTag = 7301, kDataTag = 7302;
+// The mirror's staging buffers this build uses (BackendHalo's refresh uses 0 and 1).
+constexpr std::size_t kStageSend = 2, kStageReceive = 3;
 }  // namespace
-
-bool BackendListBuild::applies(const decomp::RankGrid& grid, bool bodies) {
-    return !bodies && grid.dims()[0] * grid.dims()[1] * grid.dims()[2] == 1;
-}
 
 bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& mirror,
                              ParticleStore& store, const decomp::RankGrid& grid, const CellList& cells,
@@ -34,12 +37,20 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     fault_.clear();
     mirror.to_backend(store, kAllFields & ~kForce);
     // The first sort is by id as a 32-bit key; larger ids (never made by the scenes here, but
-    // allowed) leave the build to the host.
-    const double largest_id = exec::transform_max(target, store.n_owned(), 0.0,
-                                                  build::IdMagnitude{mirror.array<std::int64_t>(kId)});
+    // allowed) leave the build to the host, on every rank.
+    double largest_id = exec::transform_max(target, store.n_owned(), 0.0,
+                                            build::IdMagnitude{mirror.array<std::int64_t>(kId)});
+    largest_id = decomp::max(grid.comm(), largest_id);
     if (!(largest_id < 4294967296.0)) return false;
-    mirror.resize_on_backend(store, 0);
-    if (!come_home(target, mirror, store, grid)) return true;
+    mirror.resize_on_backend(store, store.n_owned(), 0);
+    const Int3 dims = grid.dims();
+    if (dims[0] * dims[1] * dims[2] == 1)
+        come_home(target, mirror, store, grid);
+    else
+        migrate(target, mirror, store, grid);
+    // Every rank stops together, with the first rank's message (as decomp::Migration).
+    fault_ = decomp::first_message(grid.comm(), fault_);
+    if (!fault_.empty()) return true;
     sort_by_cell_and_id(target, mirror, store, cells,
                         bits_for(static_cast<std::size_t>(largest_id) + 1));
     make_ghosts(target, mirror, store, grid, ghost_width, halo, backend_halo);
@@ -47,7 +58,32 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     return true;
 }
 
-bool BackendListBuild::come_home(const exec::Target& target, exec::ParticleMirror& mirror,
+namespace {
+const char* const kClosed = "left the region through a closed boundary";
+const char* const kLongJump = "moved more than a box length between list builds";
+const char* const kFarArrival = "moved more than one domain between list builds";
+}  // namespace
+
+void BackendListBuild::describe_fault(const exec::Target& target, exec::ParticleMirror& mirror,
+                                      std::size_t n, const int* fault, int axis) {
+    if (!fault_.empty()) return;  // the first one found is reported
+    const double first = exec::transform_max(target, n, -1e300, build::FaultOrder{fault});
+    if (first == -1e300) return;
+    const int code = static_cast<int>(-first);
+    const std::size_t i = exec::first_index(target, n, build::HasFault{fault, code});
+    // Codes: per axis 1 closed face, 2 and 3 long jumps through side 0 and 1; a one-pass
+    // migration (axis < 0) numbers them on from 1 + 3 axis (build::fault_code).
+    const int kind = axis < 0 ? (code - 1) % 3 + 1 : code;
+    if (axis < 0) axis = (code - 1) / 3;
+    const Vec3 x = exec::read_one(target, mirror.array<Vec3>(kPosition) + i);
+    const std::int64_t id = exec::read_one(target, mirror.array<std::int64_t>(kId) + i);
+    std::ostringstream msg;
+    msg << "particle id " << id << " at (" << x.x << ", " << x.y << ", " << x.z << ") "
+        << (kind == 1 ? kClosed : kLongJump) << " along " << "xyz"[axis];
+    fault_ = msg.str();
+}
+
+void BackendListBuild::come_home(const exec::Target& target, exec::ParticleMirror& mirror,
                                  ParticleStore& store, const decomp::RankGrid& grid) {
     const std::size_t n = store.n_owned();
     int* fault = reinterpret_cast<int*>(buffer(mirror, kFaults, n));
@@ -56,21 +92,137 @@ bool BackendListBuild::come_home(const exec::Target& target, exec::ParticleMirro
                          grid.global().length(), {0, 0, 0}, fault};
     for (int d = 0; d < 3; ++d) home.periodic[d] = grid.neighbour(d, 0) != MPI_PROC_NULL;
     exec::for_each(target, n, home);
-    const double first = exec::transform_max(target, n, -1e300, build::FaultOrder{fault});
-    if (first == -1e300) return true;
-    const int code = static_cast<int>(-first);
-    const std::size_t i = exec::first_index(target, n, build::HasFault{fault, code});
-    const Vec3 x = exec::read_one(target, mirror.array<Vec3>(kPosition) + i);
-    const std::int64_t id = exec::read_one(target, mirror.array<std::int64_t>(kId) + i);
-    const int axis = (code - 1) / 3;
-    const bool closed = (code - 1) % 3 == 0;
-    std::ostringstream msg;
-    msg << "particle id " << id << " at (" << x.x << ", " << x.y << ", " << x.z << ") "
-        << (closed ? "left the region through a closed boundary"
-                   : "moved more than a box length between list builds")
-        << " along " << "xyz"[axis];
-    fault_ = msg.str();
-    return false;
+    describe_fault(target, mirror, n, fault, -1);
+}
+
+unsigned BackendListBuild::packed_words(const exec::ParticleMirror& mirror) const {
+    unsigned words = 0;
+    mirror.for_each_array([&](FieldMask field, std::size_t bytes, void*) {
+        if (field != kForce) words += static_cast<unsigned>(bytes / 4);
+    });
+    return words;
+}
+
+void BackendListBuild::pack(const exec::Target& target, exec::ParticleMirror& mirror, const int* index,
+                            std::size_t count, std::uint32_t* out, bool image, const Vec3& shift,
+                            int turns, const Wedge& wedge) {
+    std::size_t offset = 0;
+    mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
+        if (field == kForce) return;
+        const unsigned words = static_cast<unsigned>(bytes / 4);
+        std::uint32_t* to = out + offset;
+        if (image && field == kPosition)
+            exec::for_each(target, count,
+                           decomp::GhostImage{static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to),
+                                              wedge, turns, shift});
+        else if (image && turns && field == kVelocity)
+            exec::for_each(target, count,
+                           build::TurnedCopy{static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to),
+                                             wedge, turns});
+        else
+            exec::for_each(target, count,
+                           build::GatherWords<int>{static_cast<const std::uint32_t*>(data), to, index, words});
+        offset += count * words;
+    });
+}
+
+void BackendListBuild::unpack(exec::ParticleMirror& mirror, const std::uint32_t* in, std::size_t count,
+                              std::size_t first) {
+    std::size_t offset = 0;
+    mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
+        if (field == kForce) return;
+        mirror.copy_within(static_cast<char*>(data) + first * bytes, in + offset, count * bytes);
+        offset += count * (bytes / 4);
+    });
+}
+
+std::size_t BackendListBuild::exchange(exec::ParticleMirror& mirror, MPI_Comm comm, int to, int from,
+                                       const std::uint32_t* packed, std::size_t count, std::size_t slot,
+                                       const std::uint32_t** received) {
+    const std::size_t record = packed_words(mirror) * sizeof(std::uint32_t);
+    unsigned long n_send = count, n_recv = 0;
+    MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, to, kCountTag, &n_recv, 1, MPI_UNSIGNED_LONG, from,
+                 kCountTag, comm, MPI_STATUS_IGNORE);
+    void* send = mirror.staging(kStageSend, count * record);
+    void* receive = mirror.staging(kStageReceive, n_recv * record);
+    // A face without a neighbour (a wall) moves nothing, but every rank takes part.
+    if (count > 0) mirror.copy_to_host(send, packed, count * record);
+    MPI_Sendrecv(send, static_cast<int>(count * record), MPI_BYTE, to, kDataTag, receive,
+                 static_cast<int>(n_recv * record), MPI_BYTE, from, kDataTag, comm, MPI_STATUS_IGNORE);
+    std::uint32_t* on_backend = buffer(mirror, slot, n_recv * (record / 4));
+    if (n_recv > 0) mirror.copy_to_backend(on_backend, receive, n_recv * record);
+    *received = on_backend;
+    return n_recv;
+}
+
+void BackendListBuild::migrate(const exec::Target& target, exec::ParticleMirror& mirror,
+                               ParticleStore& store, const decomp::RankGrid& grid) {
+    const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    const Wedge& wedge = grid.global().wedge;
+    if (wedge.active())
+        exec::for_each(target, store.n_owned(),
+                       build::TurnIntoWedge{mirror.array<Vec3>(kPosition), mirror.array<Vec3>(kVelocity), wedge});
+    const unsigned words = packed_words(mirror);
+    for (int d = 0; d < 3; ++d) {
+        const std::size_t n = store.n_owned();
+        std::uint32_t* leave[2] = {buffer(mirror, kFlags, n + 1), buffer(mirror, kLeave1, n + 1)};
+        int* fault = reinterpret_cast<int*>(buffer(mirror, kFaults, n));
+        build::LeaveAlong along{mirror.array<Vec3>(kPosition), mirror.array<Int3>(kImage), d, lo[d], hi[d],
+                                len[d], {0, 0}, {0, 0}, grid.dims()[d] == 1, n, leave[0], leave[1], fault};
+        for (int side = 0; side < 2; ++side) {
+            along.open[side] = grid.neighbour(d, side) != MPI_PROC_NULL;
+            along.wraps[side] = along.open[side] && grid.wraps(d, side);
+        }
+        exec::for_each(target, n + 1, along);
+        describe_fault(target, mirror, n, fault, d);
+        if (along.alone) continue;  // the wrap was the whole move
+        // Who leaves through each side, who stays; the leavers packed before the stayers
+        // close ranks.
+        std::size_t count[2];
+        const int* index[2];
+        std::uint32_t* packed[2];
+        for (int side = 0; side < 2; ++side) {
+            count[side] = exec::exclusive_scan(target, leave[side], leave[side], n + 1);
+            int* list = reinterpret_cast<int*>(buffer(mirror, side == 0 ? kIndex0 : kIndex1, count[side]));
+            exec::for_each(target, n, build::Compact{leave[side], list});
+            index[side] = list;
+        }
+        std::uint32_t* keep = buffer(mirror, kKeep, n + 1);
+        exec::for_each(target, n + 1, build::Stays{leave[0], leave[1], n, keep});
+        const std::size_t n_keep = exec::exclusive_scan(target, keep, keep, n + 1);
+        int* kept = reinterpret_cast<int*>(buffer(mirror, kValues, n_keep));
+        exec::for_each(target, n, build::Compact{keep, kept});
+        std::uint32_t* send = buffer(mirror, kSend, (count[0] + count[1]) * words);
+        packed[0] = send;
+        packed[1] = send + count[0] * words;
+        for (int side = 0; side < 2; ++side)
+            pack(target, mirror, index[side], count[side], packed[side], false, Vec3{0, 0, 0}, 0, wedge);
+        std::uint32_t* moved = buffer(mirror, kGather, n_keep * words);
+        pack(target, mirror, kept, n_keep, moved, false, Vec3{0, 0, 0}, 0, wedge);
+        unpack(mirror, moved, n_keep, 0);
+        mirror.resize_on_backend(store, n_keep, 0);
+        for (int side = 0; side < 2; ++side) {
+            const std::uint32_t* received = nullptr;
+            const std::size_t n_recv = exchange(mirror, grid.comm(), grid.neighbour(d, side),
+                                                grid.neighbour(d, 1 - side), packed[side], count[side],
+                                                kReceive, &received);
+            const std::size_t first = store.n_owned();
+            mirror.resize_on_backend(store, first + n_recv, 0);
+            unpack(mirror, received, n_recv, first);
+            if (fault_.empty() && n_recv > 0) {
+                const std::size_t k = exec::first_index(
+                    target, n_recv, build::ArrivedOutside{mirror.array<Vec3>(kPosition), d, lo[d], hi[d], first});
+                if (k < n_recv) {
+                    const Vec3 x = exec::read_one(target, mirror.array<Vec3>(kPosition) + first + k);
+                    const std::int64_t id = exec::read_one(target, mirror.array<std::int64_t>(kId) + first + k);
+                    std::ostringstream msg;
+                    msg << "particle id " << id << " at (" << x.x << ", " << x.y << ", " << x.z << ") "
+                        << kFarArrival << " along " << "xyz"[d];
+                    fault_ = msg.str();
+                }
+            }
+        }
+    }
 }
 
 void BackendListBuild::sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
@@ -84,21 +236,15 @@ void BackendListBuild::sort_by_cell_and_id(const exec::Target& target, exec::Par
     exec::for_each(target, n, build::CellKey{mirror.array<Vec3>(kPosition), cells.index(), keys, order, false});
     exec::sort_pairs(target, keys, order, n, bits_for(static_cast<std::size_t>(cells.n_cells())));
     // Every array but the forces (recomputed after a build) takes the new order.
-    std::size_t widest = 0;
-    mirror.for_each_array([&](FieldMask, std::size_t bytes, void*) { widest = std::max(widest, bytes); });
-    std::uint32_t* moved = buffer(mirror, kGather, n * (widest / 4));
-    mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
-        if (field == kForce) return;
-        exec::for_each(target, n,
-                       build::GatherWords<std::uint32_t>{static_cast<const std::uint32_t*>(data), moved,
-                                                         order, static_cast<unsigned>(bytes / 4)});
-        mirror.copy_within(data, moved, n * bytes);
-    });
+    std::uint32_t* moved = buffer(mirror, kGather, n * packed_words(mirror));
+    pack(target, mirror, reinterpret_cast<const int*>(order), n, moved, false, Vec3{0, 0, 0}, 0, Wedge{});
+    unpack(mirror, moved, n, 0);
 }
 
 void BackendListBuild::append_images(const exec::Target& target, exec::ParticleMirror& mirror,
                                      ParticleStore& store, build::NearFace near, std::size_t n_candidates,
-                                     decomp::HaloExchange::SwapPlan plan, const Wedge& wedge) {
+                                     decomp::HaloExchange::SwapPlan plan, const Wedge& wedge,
+                                     MPI_Comm comm, int to, int from) {
     const std::size_t k = plans_.size();
     std::uint32_t* flag = buffer(mirror, kFlags, n_candidates + 1);
     near.flag = flag;
@@ -108,22 +254,32 @@ void BackendListBuild::append_images(const exec::Target& target, exec::ParticleM
     int* index = reinterpret_cast<int*>(buffer(mirror, kSwapIndex0 + k, count));
     exec::for_each(target, n_candidates, build::Compact{flag, index});
     plan.import_first = store.size();
-    plan.import_count = count;
-    mirror.resize_on_backend(store, store.n_ghost() + count);
-    Vec3* x = mirror.array<Vec3>(kPosition);
-    // The owners' values of every field (ghosts carry what owners have), then positions moved
-    // to the image and velocities turned, as HaloExchange does.
-    mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
-        if (field == kForce || field == kPosition) return;
-        const unsigned words = static_cast<unsigned>(bytes / 4);
-        std::uint32_t* a = static_cast<std::uint32_t*>(data);
-        exec::for_each(target, count, build::GatherWords<int>{a, a + plan.import_first * words, index, words});
-    });
-    exec::for_each(target, count,
-                   decomp::GhostImage{x, index, x + plan.import_first, wedge, plan.turns, plan.shift});
-    if (plan.turns) {
-        Vec3* v = mirror.array<Vec3>(kVelocity);
-        exec::for_each(target, count, build::TurnedCopy{v, index, v + plan.import_first, wedge, plan.turns});
+    if (plan.to_self) {
+        // The owners' values of every field (ghosts carry what owners have), positions moved
+        // to the image and velocities turned, as HaloExchange does; in place, since every
+        // source lies before the new ghosts.
+        plan.import_count = count;
+        mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + count);
+        mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
+            if (field == kForce || field == kPosition) return;
+            const unsigned words = static_cast<unsigned>(bytes / 4);
+            std::uint32_t* a = static_cast<std::uint32_t*>(data);
+            exec::for_each(target, count, build::GatherWords<int>{a, a + plan.import_first * words, index, words});
+        });
+        Vec3* x = mirror.array<Vec3>(kPosition);
+        exec::for_each(target, count,
+                       decomp::GhostImage{x, index, x + plan.import_first, wedge, plan.turns, plan.shift});
+        if (plan.turns) {
+            Vec3* v = mirror.array<Vec3>(kVelocity);
+            exec::for_each(target, count, build::TurnedCopy{v, index, v + plan.import_first, wedge, plan.turns});
+        }
+    } else {
+        std::uint32_t* packed = buffer(mirror, kSend, count * packed_words(mirror));
+        pack(target, mirror, index, count, packed, true, plan.shift, plan.turns, wedge);
+        const std::uint32_t* received = nullptr;
+        plan.import_count = exchange(mirror, comm, to, from, packed, count, kReceive, &received);
+        mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + plan.import_count);
+        unpack(mirror, received, plan.import_count, plan.import_first);
     }
     plans_.push_back(plan);
     swap_index_.push_back(index);
@@ -146,20 +302,22 @@ void BackendListBuild::make_ghosts(const exec::Target& target, exec::ParticleMir
             for (int side = 0; side < 2; ++side) {
                 build::NearFace near{mirror.array<Vec3>(kPosition), -1, side, 0, wedge, width, 0, nullptr};
                 append_images(target, mirror, store, near, n_candidates,
-                              {true, Vec3{0, 0, 0}, side == 0 ? 1 : -1, 0, 0}, wedge);
+                              {true, Vec3{0, 0, 0}, side == 0 ? 1 : -1, 0, 0}, wedge, grid.comm(),
+                              MPI_PROC_NULL, MPI_PROC_NULL);
             }
         }
         const std::size_t n_candidates = store.size();
         for (int side = 0; side < 2; ++side) {
+            const int to = grid.neighbour(d, side), from = grid.neighbour(d, 1 - side);
             decomp::HaloExchange::SwapPlan plan{false, Vec3{0, 0, 0}, 0, 0, 0};
-            const bool open = grid.neighbour(d, side) != MPI_PROC_NULL;
-            plan.to_self = open;  // one rank: an open face is this rank's own periodic image
-            if (open && grid.wraps(d, side)) plan.shift[d] = side == 0 ? len[d] : -len[d];
-            // A closed face exports nothing: its flags are all 0.
+            plan.to_self = to == grid.rank() && from == grid.rank();
+            if (grid.wraps(d, side)) plan.shift[d] = side == 0 ? len[d] : -len[d];
+            // A face without a neighbour exports nothing: its flags are all 0.
+            const bool open = to != MPI_PROC_NULL;
             const Real edge = !open ? (side == 0 ? -INFINITY : INFINITY)
                                     : (side == 0 ? lo[d] + width : hi[d] - width);
             build::NearFace near{mirror.array<Vec3>(kPosition), d, side, edge, wedge, 0, 0, nullptr};
-            append_images(target, mirror, store, near, n_candidates, plan, wedge);
+            append_images(target, mirror, store, near, n_candidates, plan, wedge, grid.comm(), to, from);
         }
     }
     halo.adopt_plan(grid, plans_);

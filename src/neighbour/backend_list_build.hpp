@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The list build where the particles live: migration home, the cell order, ghosts, cells and
-// the full Verlet list, all as loops through the execution layer on the back end's arrays, so
-// a build moves no particle array between host and device (only counts come back). It gives
-// the host build's particle order, ghosts and list bit for bit (list_build_loops.hpp), so a run
-// continues the same whichever builds. It covers what one rank does alone without rigid bodies
-// (periodic, walled and wedge regions); elsewhere the engine builds on the host.
+// The list build where the particles live: migration, the cell order, ghosts, cells and the
+// full Verlet list, all as loops through the execution layer on the back end's arrays, so on
+// one rank a build moves no particle array between host and device (only counts come back);
+// with several ranks what crosses a domain face is packed there and staged through host
+// memory for MPI. It gives the host build's particle order, ghosts and list bit for bit
+// (list_build_loops.hpp), so a run continues the same whichever builds. It covers free
+// particles (periodic, walled and wedge regions, any rank count); with rigid bodies (whose
+// constituents host code places) the engine builds on the host.
 #pragma once
 
 #include <cstddef>
@@ -25,21 +27,22 @@ namespace emergent {
 
 class BackendListBuild {
 public:
-    /// Whether this build applies: one rank, no rigid bodies (their constituents are placed by
-    /// host code), ids below 2^32 (the sort keys; checked at each build).
-    static bool applies(const decomp::RankGrid& grid, bool bodies);
+    /// Whether this build applies: no rigid bodies (their constituents are placed by host
+    /// code); ids below 2^32 (the sort keys) are checked at each build.
+    static bool applies(bool bodies) { return !bodies; }
 
     /// Builds on the back end. Every field but forces must be current there or on the host
     /// (the mirror uploads what is stale); afterwards all live on the back end, the store holds
-    /// the new size, `halo` and `backend_halo` the ghost plan. Returns false, having changed
-    /// nothing, where ids do not fit the sort keys (the caller builds on the host); returns true
-    /// with fault() set where a particle could not be brought home (the caller stops).
+    /// the new size, `halo` and `backend_halo` the ghost plan. Collective. Returns false on
+    /// every rank, having changed nothing, where some id does not fit the sort keys (the caller
+    /// builds on the host); returns true with fault() set on every rank where some particle
+    /// could not be brought home (the caller stops).
     bool build(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                const decomp::RankGrid& grid, const CellList& cells, double ghost_width,
                double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo);
 
-    /// The first particle that could not be brought home, described as the host's migration
-    /// does; empty if none.
+    /// The first particle that could not be brought home (of the first rank with one),
+    /// described as the host's migration does; empty if none.
     const std::string& fault() const { return fault_; }
     /// The full list on the back end (CSR: neighbours of i are index[offset[i] .. offset[i+1])).
     const std::uint32_t* offsets() const { return offsets_; }
@@ -53,19 +56,44 @@ public:
     explicit BackendListBuild(std::size_t first_slot = 16) : slot_(first_slot) {}
 
 private:
-    /// Migration on one rank; false with fault_ set where a particle cannot come home.
-    bool come_home(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+    /// Migration on one rank, in one pass; fault_ set where a particle cannot come home.
+    void come_home(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                    const decomp::RankGrid& grid);
+    /// Migration on a decomposed grid, axis by axis as decomp::Migration; fault_ set (on this
+    /// rank) as there.
+    void migrate(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                 const decomp::RankGrid& grid);
+    /// Names the first particle with the first fault among the first n, in fault_ (unless a
+    /// fault was named already). Codes as LeaveAlong's on axis `axis`, or with axis -1 as
+    /// ComeHome's (all axes).
+    void describe_fault(const exec::Target& target, exec::ParticleMirror& mirror, std::size_t n,
+                        const int* fault, int axis);
+    /// Every array but the forces of particles index[0 .. count), field block after field
+    /// block, into `out` (on the back end); positions as images (shifted, turned) where
+    /// `image`, velocities turned.
+    void pack(const exec::Target& target, exec::ParticleMirror& mirror, const int* index,
+              std::size_t count, std::uint32_t* out, bool image, const Vec3& shift, int turns,
+              const Wedge& wedge);
+    /// The inverse: `count` packed particles into slots [first, first + count).
+    void unpack(exec::ParticleMirror& mirror, const std::uint32_t* in, std::size_t count, std::size_t first);
+    /// Sends `count` packed particles (on the back end) to rank `to` and receives from
+    /// `from` into the back end's buffer `slot`; returns how many came, *received where.
+    std::size_t exchange(exec::ParticleMirror& mirror, MPI_Comm comm, int to, int from,
+                         const std::uint32_t* packed, std::size_t count, std::size_t slot,
+                         const std::uint32_t** received);
+    /// 32-bit words per particle of every array but the forces.
+    unsigned packed_words(const exec::ParticleMirror& mirror) const;
     void sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
                              ParticleStore& store, const CellList& cells, int id_bits);
     void make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                      const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
                      exec::BackendHalo& backend_halo);
     /// Appends as ghosts the images of the candidates flagged by `near` (over the n_candidates
-    /// particles present before the swap's phase): the next swap of the plan.
+    /// particles present before the swap's phase): the next swap of the plan, copied in place
+    /// where it is this rank's own, else sent to rank `to` while `from`'s come in.
     void append_images(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                        build::NearFace near, std::size_t n_candidates, decomp::HaloExchange::SwapPlan plan,
-                       const Wedge& wedge);
+                       const Wedge& wedge, MPI_Comm comm, int to, int from);
     void list(const exec::Target& target, exec::ParticleMirror& mirror, const ParticleStore& store,
               const CellList& cells, double list_range);
 
@@ -73,7 +101,8 @@ private:
         return static_cast<std::uint32_t*>(mirror.scratch(slot_ + which, count * sizeof(std::uint32_t)));
     }
     enum Buffer : std::size_t { kKeys, kValues, kFlags, kGather, kCellStart, kOffsets, kNeighbours,
-                                kReference, kFaults, kSwapIndex0 };  // then one per swap (up to 8)
+                                kReference, kFaults, kLeave1, kKeep, kSend, kReceive, kIndex0, kIndex1,
+                                kSwapIndex0 };  // then one per swap (up to 8)
 
     std::size_t slot_;
     std::string fault_;

@@ -60,6 +60,88 @@ struct ComeHome {
     }
 };
 
+/// A particle past a cut face of a wedge comes back in through the other, turned: the first
+/// part of migration on a decomposed grid (x and y are whole on every rank).
+struct TurnIntoWedge {
+    Vec3* x;
+    Vec3* v;
+    Wedge wedge;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        const int turns = wedge.turns_into(x[i]);
+        if (turns) {
+            x[i] = wedge.rotate(x[i], turns);
+            v[i] = wedge.rotate(v[i], turns);
+        }
+    }
+};
+
+/// Migration along one axis of a decomposed grid, as decomp::Migration: a particle past a face
+/// with a rank behind it wraps where the face is periodic and leaves through that side
+/// (leave0/leave1 flags, each ending in 0 at n for the scans); one past a closed face stays
+/// (fault 1). With one rank along the axis the wrap is the whole move, and a particle still
+/// outside jumped more than a box length (fault 2 through side 0, 3 through side 1).
+struct LeaveAlong {
+    Vec3* x;
+    Int3* image;
+    int axis;
+    Real lo, hi, length;
+    int open[2], wraps[2];
+    bool alone;
+    std::size_t n;
+    std::uint32_t* leave0;
+    std::uint32_t* leave1;
+    int* fault;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        if (i == n) {
+            leave0[i] = leave1[i] = 0;
+            return;
+        }
+        leave0[i] = leave1[i] = 0;
+        fault[i] = 0;
+        Real& c = x[i][axis];
+        const int side = c < lo ? 0 : (c >= hi ? 1 : -1);
+        if (side < 0) return;
+        if (!open[side]) {
+            fault[i] = 1;
+            return;
+        }
+        if (wraps[side]) {
+            c += side == 0 ? length : -length;
+            image[i][axis] += side == 0 ? -1 : 1;
+        }
+        if (alone) {
+            if (c < lo || c >= hi) fault[i] = 2 + side;
+            return;
+        }
+        (side == 0 ? leave0 : leave1)[i] = 1;
+    }
+};
+
+/// After the scans of both sides' leave flags (slot0, slot1): keep[i] = 1 where particle i
+/// stays, keep[n] = 0.
+struct Stays {
+    const std::uint32_t* slot0;
+    const std::uint32_t* slot1;
+    std::size_t n;
+    std::uint32_t* keep;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        keep[i] = i < n && slot0[i + 1] == slot0[i] && slot1[i + 1] == slot1[i] ? 1u : 0u;
+    }
+};
+
+/// A particle that arrived at slot first + k lies outside the domain along the axis: it moved
+/// more than one domain between list builds.
+struct ArrivedOutside {
+    const Vec3* x;
+    int axis;
+    Real lo, hi;
+    std::size_t first;
+    EMERGENT_HD bool operator()(std::size_t k) const {
+        const Real c = x[first + k][axis];
+        return c < lo || c >= hi;
+    }
+};
+
 /// -fault[i], or -infinity where there is none: the largest is minus the first fault's code.
 struct FaultOrder {
     const int* fault;
