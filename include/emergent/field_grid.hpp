@@ -15,18 +15,18 @@ namespace emergent {
 ///  - cylindrical about an axis through `lo` along `axis`: coordinates (r, theta, s) with r in
 ///    [r_min, r_max), theta in [theta_min, theta_max) (radians, measured from the next axis
 ///    in cyclic order: for axis z, from x towards y), s along the axis in [lo[axis], hi[axis]).
-/// A dimension of 1 makes slabs (Cartesian) or rings/shells (cylindrical).
-struct FieldGrid {
+/// A dimension of 1 makes slabs (Cartesian) or rings/shells (cylindrical). This is the grid's
+/// geometry, a value the back end's loops carry; FieldGrid adds its name.
+struct FieldGeometry {
     enum class Kind { Cartesian, Cylindrical };
 
-    std::string name = "box";
     Kind kind = Kind::Cartesian;
     Int3 n{1, 1, 1};
     Vec3 lo{0, 0, 0}, hi{1, 1, 1};
     int axis = 2;  ///< cylindrical only
     Real r_min = 0, r_max = 1, theta_min = 0, theta_max = 6.283185307179586;
 
-    int n_cells() const { return n.x * n.y * n.z; }
+    EMERGENT_HD int n_cells() const { return n.x * n.y * n.z; }
 
     /// Grid coordinates (x, y, z) or (r, theta, s) of a point.
     EMERGENT_HD Vec3 coordinates(const Vec3& p) const {
@@ -77,6 +77,12 @@ struct FieldGrid {
         }
         return (c[2] * n.y + c[1]) * n.x + c[0];
     }
+
+};
+
+/// A named grid (the name keys its frames in fields.h5 and checkpoints).
+struct FieldGrid : FieldGeometry {
+    std::string name = "box";
 
     /// Volume of cell k (cylindrical cells differ with r).
     Real cell_volume(int k) const {

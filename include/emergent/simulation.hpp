@@ -10,6 +10,7 @@
 
 #include "emergent/boundary.hpp"
 #include "emergent/box.hpp"
+#include "emergent/field_grid.hpp"
 #include "emergent/force_term.hpp"
 #include "emergent/particle_store.hpp"
 #include "emergent/thermostat.hpp"
@@ -250,6 +251,11 @@ public:
     long long rebuilds() const;
     double degrees_of_freedom() const;
     const std::vector<double>& species_masses() const;
+    /// This instant's sums over the owned particles in each cell of `grid` (6 per cell: count,
+    /// mass, momentum along the grid's axes, m v^2), positions folded into the box along its
+    /// periodic axes: one sample of the coarse-grained fields. Made where the particles live
+    /// (from a back end only the sums come back), with the same bits on every back end.
+    std::vector<double> field_sums(const FieldGeometry& grid) const;
     bool has_thermostat() const;
     /// Where the particle data live and the loops run.
     Backend backend() const;

@@ -22,6 +22,8 @@
 #include "integrate/kick_drift.hpp"
 #include "integrate/particle_sums.hpp"
 #include "neighbour/backend_list_build.hpp"
+#include "neighbour/list_build_loops.hpp"
+#include "observe/field_sampling.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "rigid/rigid_bodies.hpp"
@@ -96,7 +98,8 @@ struct Simulation::Engine {
     enum Upload : std::size_t { kListOffsets, kListIndex, kHaloIndex, kReference };
     enum BodyUpload : std::size_t { kFrameInertia, kFrameFirst, kFramePositions, kConstituentFirst,
                                     kConstituentIndex };
-    enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack };
+    enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack, kFieldKeys, kFieldMembers,
+                                 kFieldStart, kFieldSums };
 
     // Each part of the step says what it reads and writes where it runs: on the back end
     // (functors through the execution layer, on the mirror's arrays) or as host code on the
@@ -796,6 +799,37 @@ void Simulation::restore(const StateSnapshot& snapshot) {
     ParticleStore bodies = snapshot.bodies;
     restore(std::move(copy), std::move(reference), snapshot.step, snapshot.time,
             snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr, saved_forces);
+}
+
+std::vector<double> Simulation::field_sums(const FieldGeometry& grid) const {
+    const Engine& e = *engine_;
+    const ParticleStore& s = e.store;
+    const std::size_t n = s.n_owned(), cells = static_cast<std::size_t>(grid.n_cells());
+    std::vector<double> sums(cells * observe::kFieldSums);
+    if (!e.mirror) {
+        observe::scatter_field_sums(grid, e.box, n, s.position.data(), s.velocity.data(), s.species.data(),
+                                    e.mass.data(), sums.data());
+        return sums;
+    }
+    // Where the particles live: sorted by cell (stably, so each cell's members in index order),
+    // each cell summed in that order; only the sums come back.
+    e.backend_reads(kPosition | kVelocity | kSpecies);
+    exec::ParticleMirror& m = *e.mirror;
+    auto* key = static_cast<std::uint32_t*>(m.scratch(Engine::kFieldKeys, n * sizeof(std::uint32_t)));
+    auto* member = static_cast<std::uint32_t*>(m.scratch(Engine::kFieldMembers, n * sizeof(std::uint32_t)));
+    auto* start = static_cast<std::uint32_t*>(m.scratch(Engine::kFieldStart, (cells + 1) * sizeof(std::uint32_t)));
+    auto* out = static_cast<double*>(m.scratch(Engine::kFieldSums, sums.size() * sizeof(double)));
+    const Vec3* x = e.data(kPosition, s.position);
+    exec::for_each(e.target, n, observe::FieldCellKey{grid, e.box, x, key, member});
+    int bits = 1;
+    while (bits < 32 && (std::size_t{1} << bits) < cells + 1) ++bits;
+    exec::sort_pairs(e.target, key, member, n, bits);
+    exec::for_each(e.target, cells + 1, build::CellStart{key, n, start});
+    exec::for_each(e.target, cells,
+                   observe::FieldCellSums{grid, e.box, x, e.data(kVelocity, s.velocity), e.data(kSpecies, s.species),
+                                          e.masses(), start, member, out});
+    m.copy_to_host(sums.data(), out, sums.size() * sizeof(double));
+    return sums;
 }
 
 const std::vector<Vec3>& Simulation::list_reference_positions() const {

@@ -90,7 +90,7 @@ void RunOutput::on_step(Simulation& sim) {
     const bool fresh_step = step > last_field_step_;
     last_field_step_ = std::max(last_field_step_, step);
     if (!fields_.empty() && fresh_step && first_step_seen_ && step % field_sample_every_ == 0)
-        add_sample(fields_, std::as_const(sim).particles(), sim.species_masses(), sim.box());
+        for (FieldAccumulator& f : fields_) f.add_sums(std::as_const(sim).field_sums(f.grid()));
     first_step_seen_ = true;
     if (!fields_.empty() && step % field_interval_ == 0 && fields_.front().samples() > 0) {
         for (std::size_t g = 0; g < fields_.size(); ++g) {

@@ -2,6 +2,8 @@
 // Coarse-graining accumulator.
 #include "observe/field_accumulator.hpp"
 
+#include "observe/field_sampling.hpp"
+
 #include <cmath>
 #include <stdexcept>
 
@@ -10,32 +12,20 @@ namespace emergent {
 FieldAccumulator::FieldAccumulator(const FieldGrid& grid)
     : grid_(grid), sums_(static_cast<std::size_t>(grid.n_cells()) * kSums, 0.0) {}
 
-namespace {
-template <class Each>
-void for_each_owned(const ParticleStore& store, const std::vector<double>& species_mass,
-                    const Box& box, Each&& each) {
-    for (std::size_t i = 0; i < store.n_owned(); ++i) {
-        // Between list builds owned particles may sit just past a periodic face; a hair below
-        // lo must land at lo, not round up to hi (outside every cell).
-        each(box.primary_image(store.position[i]), store.velocity[i],
-             species_mass[store.species[i]]);
-    }
-}
-}  // namespace
-
 void FieldAccumulator::add(const ParticleStore& store, const std::vector<double>& species_mass,
                            const Box& box) {
-    for_each_owned(store, species_mass, box,
-                   [&](const Vec3& x, const Vec3& v, double m) { add_particle(x, v, m); });
-    count_sample();
+    std::vector<double> sample(sums_.size());
+    observe::scatter_field_sums(grid_, box, store.n_owned(), store.position.data(), store.velocity.data(),
+                                store.species.data(), species_mass.data(), sample.data());
+    add_sums(sample);
 }
 
-void add_sample(std::vector<FieldAccumulator>& fields, const ParticleStore& store,
-                const std::vector<double>& species_mass, const Box& box) {
-    for_each_owned(store, species_mass, box, [&](const Vec3& x, const Vec3& v, double m) {
-        for (FieldAccumulator& f : fields) f.add_particle(x, v, m);
-    });
-    for (FieldAccumulator& f : fields) f.count_sample();
+void FieldAccumulator::add_sums(const std::vector<double>& sample) {
+    if (sample.size() != sums_.size())
+        throw std::logic_error("FieldAccumulator::add_sums: a sample of another grid than " + grid_.name);
+    // Per sample, then into the interval's sums: the same additions wherever the sample was made.
+    for (std::size_t k = 0; k < sums_.size(); ++k) sums_[k] += sample[k];
+    ++samples_;
 }
 
 std::vector<double> FieldAccumulator::global_sums(MPI_Comm comm) const {

@@ -3,9 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "emergent/random.hpp"
+#include "emergent/execution.hpp"
+#include "neighbour/list_build_loops.hpp"
 #include "observe/field_accumulator.hpp"
+#include "observe/field_sampling.hpp"
 
 using namespace emergent;
 
@@ -145,11 +149,12 @@ TEST(FieldAccumulator, ParticlesJustPastAPeriodicFaceAreCounted) {
     EXPECT_EQ(f.count[1], 1);
 }
 
-TEST(FieldAccumulator, OnePassOverSeveralGridsEqualsEachGridAlone) {
-    // add_sample folds each position once and fills every grid from it; the sums must be
-    // exactly those of FieldAccumulator::add per grid. The grids: the whole periodic box, a
-    // thin slab that most particles miss (tested on its z extent first), and a cylindrical
-    // shell (the other branch of FieldGrid::cell_of).
+TEST(FieldAccumulator, SumsByCellOrderEqualTheHostsScatterBitForBit) {
+    // The back end's sample (particles sorted stably by cell, each cell's members summed in
+    // index order: observe::FieldCellKey, FieldCellSums through the execution layer) against
+    // the host's scatter in index order: the same additions, so the same bits. The grids: the
+    // whole periodic box, a thin slab that most particles miss (tested on its z extent first),
+    // and a cylindrical shell (the other branch of FieldGrid::cell_of).
     Box box;
     box.hi = {12, 12, 12};
     ParticleStore s;
@@ -170,27 +175,29 @@ TEST(FieldAccumulator, OnePassOverSeveralGridsEqualsEachGridAlone) {
     shell.r_min = 1;
     shell.r_max = 5;
     const std::vector<double> mass{1.0};
-    std::vector<FieldAccumulator> together{FieldAccumulator(whole), FieldAccumulator(slab),
-                                           FieldAccumulator(shell)};
-    for (int sample = 0; sample < 2; ++sample) add_sample(together, s, mass, box);
-    for (std::size_t g = 0; g < together.size(); ++g) {
-        FieldAccumulator alone(together[g].grid());
-        for (int sample = 0; sample < 2; ++sample) alone.add(s, mass, box);
-        EXPECT_EQ(together[g].samples(), 2);
-        const FieldFrame a = together[g].take(MPI_COMM_SELF), b = alone.take(MPI_COMM_SELF);
+    const std::size_t n = s.n_owned();
+    int g = 0;
+    for (const FieldGrid& grid : {whole, slab, shell}) {
+        const std::size_t cells = static_cast<std::size_t>(grid.n_cells());
+        std::vector<double> scattered(cells * observe::kFieldSums), by_cell(cells * observe::kFieldSums);
+        observe::scatter_field_sums(grid, box, n, s.position.data(), s.velocity.data(), s.species.data(),
+                                    mass.data(), scattered.data());
+        std::vector<std::uint32_t> key(n), member(n), start(cells + 1);
+        exec::for_each(exec::Host{}, n, observe::FieldCellKey{grid, box, s.position.data(), key.data(), member.data()});
+        exec::sort_pairs(exec::Host{}, key.data(), member.data(), n);
+        exec::for_each(exec::Host{}, cells + 1, build::CellStart{key.data(), n, start.data()});
+        exec::for_each(exec::Host{}, cells,
+                       observe::FieldCellSums{grid, box, s.position.data(), s.velocity.data(), s.species.data(),
+                                              mass.data(), start.data(), member.data(), by_cell.data()});
+        EXPECT_EQ(0, std::memcmp(scattered.data(), by_cell.data(), scattered.size() * sizeof(double))) << "grid " << g;
         double counted = 0;
-        for (std::size_t k = 0; k < a.count.size(); ++k) {
-            EXPECT_EQ(a.count[k], b.count[k]) << "grid " << g << " cell " << k;
-            EXPECT_EQ(a.density[k], b.density[k]);
-            for (int d = 0; d < 3; ++d) EXPECT_EQ(a.velocity[3 * k + d], b.velocity[3 * k + d]);
-            if (a.count[k] > 1) EXPECT_EQ(a.temperature[k], b.temperature[k]);
-            counted += a.count[k];
-        }
+        for (std::size_t c = 0; c < cells; ++c) counted += scattered[c * observe::kFieldSums];
         // Every particle is in the whole box's grid; the slab holds about 1/12 of them.
-        if (g == 0) EXPECT_EQ(counted, 2 * 3000);
+        if (g == 0) EXPECT_EQ(counted, 3000);
         if (g == 1) {
-            EXPECT_GT(counted, 2 * 150);
-            EXPECT_LT(counted, 2 * 350);
+            EXPECT_GT(counted, 150);
+            EXPECT_LT(counted, 350);
         }
+        ++g;
     }
 }
