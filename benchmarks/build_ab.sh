@@ -5,6 +5,8 @@
 # rounds, the one that runs first alternating, so the machine's load drifts alike over both. Reports each build's median rate and
 # the median over rounds of the ratio B / A (the figure to quote: noise in one round cancels).
 # usage: benchmarks/build_ab.sh RANKS SETTLE TIMED REPEATS EXE_A EXE_B SCENE [--set key=value]...
+#        A_SETS / B_SETS ("key=value ..."): settings of A's or B's timed runs only (adjustable
+#        ones), so one build can be set against itself (e.g. B_SETS=neighbour_list=full).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ranks=$1 settle=$2 timed_steps=$3 repeats=$4 exe_a=$5 exe_b=$6 scene=$7
@@ -12,9 +14,11 @@ shift 7
 . benchmarks/common.sh
 settle_checkpoint "$exe_a" "$ranks" "$settle" "$scene" "$@"
 rate() {
+  local sets=() kv
+  for kv in $([ "$2" = a ] && echo "${A_SETS:-}" || echo "${B_SETS:-}"); do sets+=(--set "$kv"); done
   mpirun --oversubscribe -np "$ranks" "$1" run --restart "$work/settle/checkpoint.h5" \
     --set steps=$((settle + timed_steps)) --set checkpoint_every=0 --set progress_interval=0 \
-    --summary-json "$work/s.json" >/dev/null
+    "${sets[@]}" --summary-json "$work/s.json" >/dev/null
   summary_value "$work/s.json" bytes_per_particle >>"$work/m$2"
   summary_value "$work/s.json" atom_steps_per_second
 }
@@ -26,6 +30,7 @@ for r in $(seq "$repeats"); do
   echo "$a" >>"$work/a"; echo "$b" >>"$work/b"
   awk -v a="$a" -v b="$b" 'BEGIN {print b / a}' >>"$work/ratio"
 done
+[ -n "${A_SETS:-}${B_SETS:-}" ] && echo "# timed runs of A also: ${A_SETS:-(nothing)}; of B: ${B_SETS:-(nothing)}"
 printf '| build (%d ranks, %d steps) | particle-steps/s (median of %d) | B/particle |\n|---|---|---|\n' \
   "$ranks" "$timed_steps" "$repeats"
 printf '| A %s | %.3g | %.0f |\n' "$exe_a" "$(median <"$work/a")" "$(median <"$work/ma")"
