@@ -136,22 +136,29 @@ void BackendListBuild::unpack(exec::ParticleMirror& mirror, const std::uint32_t*
     });
 }
 
-std::size_t BackendListBuild::exchange(exec::ParticleMirror& mirror, MPI_Comm comm, int to, int from,
-                                       const std::uint32_t* packed, std::size_t count, std::size_t slot,
-                                       const std::uint32_t** received) {
+std::size_t BackendListBuild::exchange(const exec::Target& target, exec::ParticleMirror& mirror, MPI_Comm comm,
+                                       int to, int from, const std::uint32_t* packed, std::size_t count,
+                                       std::size_t slot, const std::uint32_t** received) {
     const std::size_t record = packed_words(mirror) * sizeof(std::uint32_t);
     unsigned long n_send = count, n_recv = 0;
     MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, to, kCountTag, &n_recv, 1, MPI_UNSIGNED_LONG, from,
                  kCountTag, comm, MPI_STATUS_IGNORE);
+    std::uint32_t* on_backend = buffer(mirror, slot, n_recv * (record / 4));
+    *received = on_backend;
+    if (target.device && exec::mpi_reads_device_memory()) {
+        // CUDA-aware MPI reads and writes device memory: no staging; the packing must be done.
+        exec::synchronize(target);
+        MPI_Sendrecv(packed, static_cast<int>(count * record), MPI_BYTE, to, kDataTag, on_backend,
+                     static_cast<int>(n_recv * record), MPI_BYTE, from, kDataTag, comm, MPI_STATUS_IGNORE);
+        return n_recv;
+    }
     void* send = mirror.staging(kStageSend, count * record);
     void* receive = mirror.staging(kStageReceive, n_recv * record);
     // A face without a neighbour (a wall) moves nothing, but every rank takes part.
     if (count > 0) mirror.copy_to_host(send, packed, count * record);
     MPI_Sendrecv(send, static_cast<int>(count * record), MPI_BYTE, to, kDataTag, receive,
                  static_cast<int>(n_recv * record), MPI_BYTE, from, kDataTag, comm, MPI_STATUS_IGNORE);
-    std::uint32_t* on_backend = buffer(mirror, slot, n_recv * (record / 4));
     if (n_recv > 0) mirror.copy_to_backend(on_backend, receive, n_recv * record);
-    *received = on_backend;
     return n_recv;
 }
 
@@ -203,7 +210,7 @@ void BackendListBuild::migrate(const exec::Target& target, exec::ParticleMirror&
         mirror.resize_on_backend(store, n_keep, 0);
         for (int side = 0; side < 2; ++side) {
             const std::uint32_t* received = nullptr;
-            const std::size_t n_recv = exchange(mirror, grid.comm(), grid.neighbour(d, side),
+            const std::size_t n_recv = exchange(target, mirror, grid.comm(), grid.neighbour(d, side),
                                                 grid.neighbour(d, 1 - side), packed[side], count[side],
                                                 kReceive, &received);
             const std::size_t first = store.n_owned();
@@ -277,7 +284,7 @@ void BackendListBuild::append_images(const exec::Target& target, exec::ParticleM
         std::uint32_t* packed = buffer(mirror, kSend, count * packed_words(mirror));
         pack(target, mirror, index, count, packed, true, plan.shift, plan.turns, wedge);
         const std::uint32_t* received = nullptr;
-        plan.import_count = exchange(mirror, comm, to, from, packed, count, kReceive, &received);
+        plan.import_count = exchange(target, mirror, comm, to, from, packed, count, kReceive, &received);
         mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + plan.import_count);
         unpack(mirror, received, plan.import_count, plan.import_first);
     }

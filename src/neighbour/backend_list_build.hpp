@@ -77,8 +77,9 @@ private:
     /// The inverse: `count` packed particles into slots [first, first + count).
     void unpack(exec::ParticleMirror& mirror, const std::uint32_t* in, std::size_t count, std::size_t first);
     /// Sends `count` packed particles (on the back end) to rank `to` and receives from
-    /// `from` into the back end's buffer `slot`; returns how many came, *received where.
-    std::size_t exchange(exec::ParticleMirror& mirror, MPI_Comm comm, int to, int from,
+    /// `from` into the back end's buffer `slot`, staged through host memory (or directly where
+    /// MPI reads device memory); returns how many came, *received where.
+    std::size_t exchange(const exec::Target& target, exec::ParticleMirror& mirror, MPI_Comm comm, int to, int from,
                          const std::uint32_t* packed, std::size_t count, std::size_t slot,
                          const std::uint32_t** received);
     /// 32-bit words per particle of every array but the forces.
