@@ -97,7 +97,10 @@ struct Simulation::Engine {
     // The mirrors' buffers the engine fills.
     enum Upload : std::size_t { kListOffsets, kListIndex, kHaloIndex, kReference };
     enum BodyUpload : std::size_t { kFrameInertia, kFrameFirst, kFramePositions, kConstituentFirst,
-                                    kConstituentIndex };
+                                    kConstituentIndex, kFrameSpecies, kFrameDiameters };
+    /// The constituents' species and diameters by frame position, on the back end.
+    const int* frame_species_on_backend = nullptr;
+    const double* frame_diameters_on_backend = nullptr;
     enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack, kFieldKeys, kFieldMembers,
                                  kFieldStart, kFieldSums };
 
@@ -174,6 +177,8 @@ struct Simulation::Engine {
         frames_on_backend.inertia = up(kFrameInertia, rigid.frame_inertia());
         frames_on_backend.first = up(kFrameFirst, rigid.frame_first());
         frames_on_backend.positions = up(kFramePositions, rigid.frame_positions());
+        frame_species_on_backend = up(kFrameSpecies, rigid.frame_species());
+        frame_diameters_on_backend = up(kFrameDiameters, rigid.frame_diameters());
     }
     /// The constituent index where the back end reads it (after each build).
     void place_constituents() {
@@ -286,18 +291,23 @@ struct Simulation::Engine {
     }
 
     /// `on_backend`: the build may run where the particles live (BackendListBuild; on one rank
-    /// it moves no particle array); the host builds where that does not apply (rigid bodies,
-    /// the half list) and at initialise and restore.
+    /// it moves no particle array); the host builds where that does not apply (rigid bodies on
+    /// several ranks, the half list) and at initialise and restore.
     void rebuild(bool on_backend = false) {
         PhaseTimer timer(times.neighbour);
-        if (on_backend && mirror && full_list && BackendListBuild::applies(bodies())) {
+        if (on_backend && mirror && full_list && BackendListBuild::applies(bodies(), *grid)) {
             if (!boundaries.empty()) agree_on_boundary_faults();
+            BackendListBuild::Bodies body_tables;
+            if (bodies())
+                body_tables = {&rigid, body_mirror.get(), &host_bodies(), frames_on_backend,
+                               frame_species_on_backend, frame_diameters_on_backend};
             if (backend_build.build(target, *mirror, store, *grid, cells, ghost_width(), list.list_cutoff(),
-                                    halo, backend_halo)) {
+                                    halo, backend_halo, bodies() ? &body_tables : nullptr)) {
                 if (!backend_build.fault().empty()) throw InstabilityError(backend_build.fault());
                 list_offset = backend_build.offsets();
                 list_index = backend_build.neighbours();
                 reference_on_backend = backend_build.reference();
+                if (bodies()) constituents_on_backend = backend_build.constituents();
                 built_on_backend = true;
                 reference_copied = false;
                 moved_since_build = false;

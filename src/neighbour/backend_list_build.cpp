@@ -33,7 +33,7 @@ constexpr std::size_t kStageSend = 2, kStageReceive = 3;
 bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& mirror,
                              ParticleStore& store, const decomp::RankGrid& grid, const CellList& cells,
                              double ghost_width, double list_range, decomp::HaloExchange& halo,
-                             exec::BackendHalo& backend_halo) {
+                             exec::BackendHalo& backend_halo, const Bodies* bodies) {
     fault_.clear();
     mirror.to_backend(store, kAllFields & ~kForce);
     // The first sort is by id as a 32-bit key; larger ids (never made by the scenes here, but
@@ -43,6 +43,9 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     largest_id = decomp::max(grid.comm(), largest_id);
     if (!(largest_id < 4294967296.0)) return false;
     mirror.resize_on_backend(store, store.n_owned(), 0);
+    // With bodies (one rank): their constituents go, free particles come home, bodies come
+    // home, their constituents come back after the free ones (RigidBodies' order).
+    if (bodies) drop_constituents(target, mirror, store);
     const Int3 dims = grid.dims();
     if (dims[0] * dims[1] * dims[2] == 1)
         come_home(target, mirror, store, grid);
@@ -51,8 +54,25 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     // Every rank stops together, with the first rank's message (as decomp::Migration).
     fault_ = decomp::first_message(grid.comm(), fault_);
     if (!fault_.empty()) return true;
-    sort_by_cell_and_id(target, mirror, store, cells,
-                        bits_for(static_cast<std::size_t>(largest_id) + 1));
+    if (bodies) {
+        bodies->mirror->to_backend(*bodies->store, kAllFields & ~(kForce | kTorque));
+        come_home(target, *bodies->mirror, *bodies->store, grid);
+        fault_ = decomp::first_message(grid.comm(), fault_);
+        if (!fault_.empty()) return true;
+        bodies->mirror->written_on_backend(*bodies->store, kPosition | kVelocity | kImage);
+        append_constituents(target, mirror, store, *bodies);
+    }
+    const std::uint32_t* order = sort_by_cell_and_id(target, mirror, store, cells,
+                                                     bits_for(static_cast<std::size_t>(largest_id) + 1));
+    if (bodies) {
+        // Where the appended constituents went in the sort: the index the bodies' loops use.
+        const std::size_t n = store.n_owned(), n_constituents = n - n_free_;
+        std::uint32_t* new_of_old = buffer(mirror, kNewOfOld, n);
+        exec::for_each(target, n, build::InvertOrder{order, new_of_old});
+        std::uint32_t* index = buffer(mirror, kConstituentIndex, n_constituents);
+        exec::for_each(target, n_constituents, build::MovedSlots{new_of_old, n_free_, index});
+        constituents_.index = index;
+    }
     make_ghosts(target, mirror, store, grid, ghost_width, halo, backend_halo);
     list(target, mirror, store, cells, list_range);
     return true;
@@ -232,8 +252,52 @@ void BackendListBuild::migrate(const exec::Target& target, exec::ParticleMirror&
     }
 }
 
-void BackendListBuild::sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
-                                           ParticleStore& store, const CellList& cells, int id_bits) {
+void BackendListBuild::drop_constituents(const exec::Target& target, exec::ParticleMirror& mirror,
+                                         ParticleStore& store) {
+    const std::size_t n = store.n_owned();
+    std::uint32_t* keep = buffer(mirror, kKeep, n + 1);
+    exec::for_each(target, n + 1, build::IsFree{mirror.array<std::int64_t>(kBody), n, keep});
+    n_free_ = exec::exclusive_scan(target, keep, keep, n + 1);
+    int* kept = reinterpret_cast<int*>(buffer(mirror, kValues, n_free_));
+    exec::for_each(target, n, build::Compact{keep, kept});
+    std::uint32_t* moved = buffer(mirror, kGather, n_free_ * packed_words(mirror));
+    pack(target, mirror, kept, n_free_, moved, false, Vec3{0, 0, 0}, 0, Wedge{});
+    unpack(mirror, moved, n_free_, 0);
+    mirror.resize_on_backend(store, n_free_, 0);
+}
+
+void BackendListBuild::append_constituents(const exec::Target& target, exec::ParticleMirror& mirror,
+                                           ParticleStore& store, const Bodies& bodies) {
+    exec::ParticleMirror& b = *bodies.mirror;
+    const std::size_t n_bodies = bodies.store->n_owned();
+    const int* kind = b.array<int>(kSpecies);
+    std::uint32_t* first = buffer(mirror, kConstituentFirst, n_bodies + 1);
+    exec::for_each(target, n_bodies + 1, build::ConstituentCount{kind, bodies.frames.first, n_bodies, first});
+    const std::size_t n_constituents = exec::exclusive_scan(target, first, first, n_bodies + 1);
+    constituents_.first = first;
+    // Constituents at the slots after the free particles, body after body.
+    mirror.resize_on_backend(store, n_free_ + n_constituents, 0);
+    std::uint32_t* slots = buffer(mirror, kConstituentIndex, n_constituents);
+    exec::for_each(target, n_constituents, build::AppendSlots{static_cast<std::uint32_t>(n_free_), slots});
+    rigid::RigidBodies::Arrays a;
+    a.state = {b.array<Vec3>(kPosition), b.array<Vec3>(kVelocity), b.array<Vec3>(kForce),
+               b.array<Quat>(kOrientation), b.array<Quat>(kAngularMomentum), b.array<Vec3>(kTorque), kind};
+    a.frames = bodies.frames;
+    bodies.rigid->place_at(target, a, rigid::ConstituentIndex{first, slots}, mirror.array<Vec3>(kPosition),
+                           mirror.array<Vec3>(kVelocity));
+    exec::for_each(target, n_bodies,
+                   build::ConstituentFields{kind, b.array<std::int64_t>(kId), b.array<std::int64_t>(kBody),
+                                            b.array<Int3>(kImage), bodies.frames.first, bodies.species,
+                                            bodies.diameters, first, n_free_, mirror.array<int>(kSpecies),
+                                            mirror.array<std::int64_t>(kId), mirror.array<std::int64_t>(kBody),
+                                            mirror.array<Int3>(kImage),
+                                            store.has_diameters() ? mirror.array<Real>(kDiameter) : nullptr,
+                                            mirror.array<Quat>(kOrientation), mirror.array<Quat>(kAngularMomentum),
+                                            mirror.array<Vec3>(kTorque)});
+}
+
+const std::uint32_t* BackendListBuild::sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
+                                                           ParticleStore& store, const CellList& cells, int id_bits) {
     // By id, then stably by cell: the host's order (cells, ids ascending within each).
     const std::size_t n = store.n_owned();
     std::uint32_t* keys = buffer(mirror, kKeys, n);
@@ -246,6 +310,7 @@ void BackendListBuild::sort_by_cell_and_id(const exec::Target& target, exec::Par
     std::uint32_t* moved = buffer(mirror, kGather, n * packed_words(mirror));
     pack(target, mirror, reinterpret_cast<const int*>(order), n, moved, false, Vec3{0, 0, 0}, 0, Wedge{});
     unpack(mirror, moved, n, 0);
+    return order;
 }
 
 void BackendListBuild::append_images(const exec::Target& target, exec::ParticleMirror& mirror,

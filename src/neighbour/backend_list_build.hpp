@@ -1,12 +1,14 @@
 // SPDX-License-Identifier: MIT
 // The list build where the particles live: migration, the cell order, ghosts, cells and the
-// full Verlet list, all as loops through the execution layer on the back end's arrays, so on
+// full Verlet list, all as loops through the execution layer on the back end's arrays (with
+// rigid bodies on one rank: their constituents dropped, the bodies brought home and their
+// constituents placed again, as RigidBodies does on the host), so on
 // one rank a build moves no particle array between host and device (only counts come back);
 // with several ranks what crosses a domain face is packed there and staged through host
 // memory for MPI. It gives the host build's particle order, ghosts and list bit for bit
 // (list_build_loops.hpp), so a run continues the same whichever builds. It covers free
-// particles (periodic, walled and wedge regions, any rank count); with rigid bodies (whose
-// constituents host code places) the engine builds on the host.
+// particles in periodic, walled and wedge regions on any rank count, and rigid bodies on one
+// rank; with bodies on several ranks the engine builds on the host.
 #pragma once
 
 #include <cstddef>
@@ -22,14 +24,32 @@
 #include "execution/particle_mirror.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/list_build_loops.hpp"
+#include "rigid/body_motion.hpp"
+#include "rigid/rigid_bodies.hpp"
 
 namespace emergent {
 
 class BackendListBuild {
 public:
-    /// Whether this build applies: no rigid bodies (their constituents are placed by host
-    /// code); ids below 2^32 (the sort keys) are checked at each build.
-    static bool applies(bool bodies) { return !bodies; }
+    /// Whether this build applies: without rigid bodies, or with them on one rank (bodies
+    /// crossing between ranks migrate in host code); ids below 2^32 (the sort keys) are
+    /// checked at each build.
+    static bool applies(bool bodies, const decomp::RankGrid& grid) {
+        const Int3 d = grid.dims();
+        return !bodies || d[0] * d[1] * d[2] == 1;
+    }
+
+    /// The bodies' side of a build with rigid bodies: their arrays (a second mirror of their
+    /// store) and their kinds' tables on the back end (frames; constituent species and
+    /// diameters aligned with the frame positions).
+    struct Bodies {
+        const rigid::RigidBodies* rigid = nullptr;  ///< places the constituents
+        exec::ParticleMirror* mirror = nullptr;
+        ParticleStore* store = nullptr;
+        rigid::FrameTable frames{};
+        const int* species = nullptr;
+        const double* diameters = nullptr;
+    };
 
     /// Builds on the back end. Every field but forces must be current there or on the host
     /// (the mirror uploads what is stale); afterwards all live on the back end, the store holds
@@ -39,7 +59,8 @@ public:
     /// could not be brought home (the caller stops).
     bool build(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                const decomp::RankGrid& grid, const CellList& cells, double ghost_width,
-               double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo);
+               double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo,
+               const Bodies* bodies = nullptr);
 
     /// The first particle that could not be brought home (of the first rank with one),
     /// described as the host's migration does; empty if none.
@@ -50,6 +71,9 @@ public:
     std::size_t n_pairs() const { return n_pairs_; }
     /// Owned positions at the build, on the back end.
     const Vec3* reference() const { return reference_; }
+    /// With bodies: where each body's constituents sit now (rigid::ConstituentIndex), on the
+    /// back end.
+    rigid::ConstituentIndex constituents() const { return constituents_; }
 
     /// The scratch slots of the mirror this build uses, from `first` on (the engine's others
     /// lie below).
@@ -84,8 +108,14 @@ private:
                          const std::uint32_t** received);
     /// 32-bit words per particle of every array but the forces.
     unsigned packed_words(const exec::ParticleMirror& mirror) const;
-    void sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
-                             ParticleStore& store, const CellList& cells, int id_bits);
+    /// Drops the constituents of bodies (free particles close ranks, in order).
+    void drop_constituents(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store);
+    /// Appends the bodies' constituents after the free particles, in body order.
+    void append_constituents(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                             const Bodies& bodies);
+    /// Sorts by cell and id; returns the order (order[k] = old index of new k), on the back end.
+    const std::uint32_t* sort_by_cell_and_id(const exec::Target& target, exec::ParticleMirror& mirror,
+                                             ParticleStore& store, const CellList& cells, int id_bits);
     void make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                      const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
                      exec::BackendHalo& backend_halo);
@@ -103,13 +133,15 @@ private:
     }
     enum Buffer : std::size_t { kKeys, kValues, kFlags, kGather, kCellStart, kOffsets, kNeighbours,
                                 kReference, kFaults, kLeave1, kKeep, kSend, kReceive, kIndex0, kIndex1,
-                                kSwapIndex0 };  // then one per swap (up to 8)
+                                kConstituentFirst, kConstituentIndex, kNewOfOld, kSwapIndex0 };  // then one per swap (up to 8)
 
     std::size_t slot_;
     std::string fault_;
     const std::uint32_t *offsets_ = nullptr, *neighbours_ = nullptr;
     std::size_t n_pairs_ = 0;
     const Vec3* reference_ = nullptr;
+    rigid::ConstituentIndex constituents_{};
+    std::size_t n_free_ = 0;  ///< free particles before the constituents, at the last build
     std::vector<decomp::HaloExchange::SwapPlan> plans_;
     std::vector<const int*> swap_index_;
     std::vector<std::size_t> swap_count_;

@@ -9,8 +9,10 @@
 #include <cstdint>
 
 #include "emergent/box.hpp"
+#include "emergent/quaternion.hpp"
 #include "emergent/vec3.hpp"
 #include "neighbour/cell_list.hpp"
+#include "rigid/body_motion.hpp"
 
 namespace emergent::build {
 
@@ -140,6 +142,86 @@ struct ArrivedOutside {
         const Real c = x[first + k][axis];
         return c < lo || c >= hi;
     }
+};
+
+/// keep[i] = 1 for a free particle (body < 0), 0 for a constituent of a body; keep[n] = 0.
+struct IsFree {
+    const std::int64_t* body;
+    std::size_t n;
+    std::uint32_t* keep;
+    EMERGENT_HD void operator()(std::size_t i) const { keep[i] = i < n && body[i] < 0 ? 1u : 0u; }
+};
+
+/// count[b] = constituents of body b (its kind's frame), count[n] = 0: scanned, where each
+/// body's constituents begin.
+struct ConstituentCount {
+    const int* kind;
+    const std::uint32_t* frame_first;
+    std::size_t n;
+    std::uint32_t* count;
+    EMERGENT_HD void operator()(std::size_t b) const {
+        count[b] = b < n ? frame_first[kind[b] + 1] - frame_first[kind[b]] : 0u;
+    }
+};
+
+/// index[j] = first + j: the slots the constituents are appended at.
+struct AppendSlots {
+    std::uint32_t first;
+    std::uint32_t* index;
+    EMERGENT_HD void operator()(std::size_t j) const { index[j] = first + static_cast<std::uint32_t>(j); }
+};
+
+/// Constituent k of body b, appended at slot `at`: its fields other than position and velocity,
+/// as RigidBodies::append_constituents gives them (id first constituent id + k, the body's id
+/// and image, its kind's species and diameter; orientation, angular momentum and torque at their
+/// fill values).
+struct ConstituentFields {
+    const int* kind;
+    const std::int64_t* body_id;
+    const std::int64_t* first_id;
+    const Int3* body_image;
+    const std::uint32_t* frame_first;
+    const int* frame_species;
+    const double* frame_diameter;
+    const std::uint32_t* first;  ///< where body b's constituents begin (scanned counts)
+    std::size_t at;              ///< the first constituent's slot
+    int* species;
+    std::int64_t* id;
+    std::int64_t* body;
+    Int3* image;
+    Real* diameter;  ///< null: the store has none
+    Quat* orientation;
+    Quat* angular_momentum;
+    Vec3* torque;
+    EMERGENT_HD void operator()(std::size_t b) const {
+        const int k = kind[b];
+        for (std::uint32_t j = 0; j < frame_first[k + 1] - frame_first[k]; ++j) {
+            const std::size_t i = at + first[b] + j;
+            species[i] = frame_species[frame_first[k] + j];
+            id[i] = first_id[b] + static_cast<std::int64_t>(j);
+            body[i] = body_id[b];
+            image[i] = body_image[b];
+            if (diameter) diameter[i] = frame_diameter[frame_first[k] + j];
+            orientation[i] = Quat{};
+            angular_momentum[i] = Quat{0, 0, 0, 0};
+            torque[i] = Vec3{0, 0, 0};
+        }
+    }
+};
+
+/// new_of_old[order[k]] = k: where each particle went in a new order.
+struct InvertOrder {
+    const std::uint32_t* order;
+    std::uint32_t* new_of_old;
+    EMERGENT_HD void operator()(std::size_t k) const { new_of_old[order[k]] = static_cast<std::uint32_t>(k); }
+};
+
+/// index[j] = new_of_old[at + j]: the constituent index after the sort.
+struct MovedSlots {
+    const std::uint32_t* new_of_old;
+    std::size_t at;
+    std::uint32_t* index;
+    EMERGENT_HD void operator()(std::size_t j) const { index[j] = new_of_old[at + j]; }
 };
 
 /// -fault[i], or -infinity where there is none: the largest is minus the first fault's code.

@@ -30,6 +30,8 @@ int RigidBodies::add_kind(const BodyKind& kind, const std::vector<double>& speci
     frame_mass_.push_back(f.mass);
     frame_inertia_.push_back(f.inertia);
     frame_positions_.insert(frame_positions_.end(), f.positions.begin(), f.positions.end());
+    frame_species_.insert(frame_species_.end(), kind.species.begin(), kind.species.end());
+    frame_diameters_.insert(frame_diameters_.end(), kind.diameters.begin(), kind.diameters.end());
     frame_first_.push_back(static_cast<std::uint32_t>(frame_positions_.size()));
     kinds_.push_back(kind);
     kind_masses_.push_back(shape.masses);
@@ -51,12 +53,6 @@ void RigidBodies::add(int kind, const Vec3& com, const Quat& orientation, const 
     bodies_.angular_momentum[b] = r.p;
 }
 
-Vec3 RigidBodies::omega_space(std::size_t b) const {
-    const Rotor r{bodies_.orientation[b], bodies_.angular_momentum[b],
-                  frames_[bodies_.species[b]].inertia};
-    return rotate(r.q, angular_velocity_body(r));
-}
-
 void RigidBodies::drop_constituents(ParticleStore& store) const {
     std::vector<std::uint32_t> keep;
     for (std::size_t i = 0; i < store.n_owned(); ++i)
@@ -76,18 +72,39 @@ RigidBodies::Arrays RigidBodies::host_arrays() const {
 }
 
 void RigidBodies::append_constituents(ParticleStore& store) const {
+    std::vector<std::uint32_t> first(bodies_.n_owned() + 1, 0), slots;
     for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
         const int kind = bodies_.species[b];
-        const BodyFrame& f = frames_[kind];
-        const Vec3 R = bodies_.position[b], V = bodies_.velocity[b], w = omega_space(b);
-        for (std::size_t k = 0; k < f.positions.size(); ++k) {
-            const Vec3 arm = rotate(bodies_.orientation[b], f.positions[k]);
-            store.add_owned(R + arm, V + cross(w, arm), kinds_[kind].species[k],
+        const std::size_t n = frames_[kind].positions.size();
+        first[b + 1] = first[b] + static_cast<std::uint32_t>(n);
+        for (std::size_t k = 0; k < n; ++k) {
+            slots.push_back(static_cast<std::uint32_t>(store.n_owned()));
+            store.add_owned(Vec3{0, 0, 0}, Vec3{0, 0, 0}, kinds_[kind].species[k],
                             bodies_.body[b] + static_cast<std::int64_t>(k), kinds_[kind].diameters[k]);
             store.body.back() = bodies_.id[b];
             store.image.back() = bodies_.image[b];
         }
     }
+    // Positions and velocities by the step's own placement (place_constituents), the code the
+    // back end's list build runs too: the same bits wherever a build runs.
+    place_at(exec::Target{}, host_arrays(), ConstituentIndex{first.data(), slots.data()}, store.position.data(),
+             store.velocity.data());
+}
+
+namespace {
+struct PlaceAt {
+    BodyState s;
+    FrameTable frames;
+    ConstituentIndex at;
+    Vec3* x;
+    Vec3* v;
+    EMERGENT_HD void operator()(std::size_t b) const { place_constituents(s, frames, at, b, x, v, false); }
+};
+}  // namespace
+
+void RigidBodies::place_at(const exec::Target& target, const Arrays& a, const ConstituentIndex& at, Vec3* x,
+                           Vec3* v) const {
+    exec::for_each(target, bodies_.n_owned(), PlaceAt{a.state, a.frames, at, x, v});
 }
 
 void RigidBodies::index_constituents(const ParticleStore& store) {

@@ -62,11 +62,18 @@ public:
     };
     /// The store's own arrays (the const passes only read through them).
     Arrays host_arrays() const;
+    /// Places every owned body's constituents at the slots `at` says (positions and
+    /// velocities, rigid::place_constituents) on `target`: one loop for the host's append and
+    /// the back end's list build, so both give the same bits.
+    void place_at(const exec::Target& target, const Arrays& a, const ConstituentIndex& at, Vec3* x, Vec3* v) const;
     /// The flat tables behind FrameTable and ConstituentIndex, for copying to a back end.
     const std::vector<double>& frame_masses() const { return frame_mass_; }
     const std::vector<Vec3>& frame_inertia() const { return frame_inertia_; }
     const std::vector<std::uint32_t>& frame_first() const { return frame_first_; }
     const std::vector<Vec3>& frame_positions() const { return frame_positions_; }
+    /// Species and diameters of the constituents, aligned with frame_positions().
+    const std::vector<int>& frame_species() const { return frame_species_; }
+    const std::vector<double>& frame_diameters() const { return frame_diameters_; }
     const std::vector<std::uint32_t>& constituent_first() const { return first_; }
     const std::vector<std::uint32_t>& constituent_index() const { return index_; }
 
@@ -91,8 +98,6 @@ public:
     Vec3 angular_momentum(const exec::Target& target, const Arrays& a, const Vec3& box_length) const;
 
 private:
-    Vec3 omega_space(std::size_t b) const;
-
     std::vector<BodyKind> kinds_;
     std::vector<BodyFrame> frames_;
     std::vector<std::vector<double>> kind_masses_;
@@ -104,6 +109,8 @@ private:
     std::vector<double> frame_mass_;
     std::vector<Vec3> frame_inertia_, frame_positions_;
     std::vector<std::uint32_t> frame_first_{0};
+    std::vector<int> frame_species_;
+    std::vector<double> frame_diameters_;
 };
 
 }  // namespace emergent::rigid
