@@ -47,11 +47,23 @@ for seed in seeds:
     (done if first is not None else censored).append(first if first is not None else float(t[-1]))
     print(f"{seed:5s}  {('%.1f' % first) if first is not None else ('>%.0f' % t[-1]):>16s}"
           f"  {m['largest_cluster']:14.0f}  {m['complete_shells']:13.0f}  {s['wall_seconds']:6.0f}")
-if done:
-    done.sort()
-    mid = done[len(done) // 2] if len(done) % 2 else 0.5 * (done[len(done) // 2 - 1] + done[len(done) // 2])
-    print(f"# completed {len(done)} of {len(seeds)}: median {mid:.1f} tau, range {done[0]:.1f}-{done[-1]:.1f} tau"
-          + (f"; {len(censored)} censored at {censored[0]:.0f} tau" if censored else ""))
-else:
-    print(f"# none of {len(seeds)} completed within {censored[0]:.0f} tau")
+# Completion as a rate (exponential waiting times, censored runs counted): k completions in
+# the total observed time T give the rate k / T, the median time ln 2 T / k, and the exact
+# Poisson 95 % interval of k / T bounds both.
+import math
+def poisson_cdf(k, mu):
+    return sum(math.exp(-mu) * mu ** j / math.factorial(j) for j in range(k + 1))
+def solve(f, lo, hi):
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) > 0 else (lo, mid)
+    return 0.5 * (lo + hi)
+k, T = len(done), sum(done) + sum(censored)
+upper = solve(lambda mu: poisson_cdf(k, mu) - 0.025, 0.0, 100.0 + 10 * k)
+lower = solve(lambda mu: poisson_cdf(k - 1, mu) - 0.975, 0.0, 100.0 + 10 * k) if k > 0 else 0.0
+print(f"# completed {k} of {len(seeds)}" + (f" (at {', '.join('%.0f' % t for t in sorted(done))} tau)" if done else "")
+      + f"; {len(censored)} censored; total observed {T:.0f} tau")
+print(f"# rate {k / T:.3g} per tau (95 %: {lower / T:.3g}-{upper / T:.3g}); median time to complete "
+      + (f"{math.log(2) * T / k:.0f} tau" if k else "unbounded above") + f" (95 %: {math.log(2) * T / upper:.0f}-"
+      + (f"{math.log(2) * T / lower:.0f}" if lower > 0 else "inf") + " tau)")
 PY
