@@ -14,19 +14,17 @@ namespace emergent::decomp {
 namespace {
 constexpr int kCountTag = 7201;
 constexpr int kDataTag = 7202;
-
-/// Describes a particle that broke the migration rules (the first one seen is reported).
-std::string describe(const ParticleStore& store, std::size_t i, int d, const char* why) {
-    std::ostringstream msg;
-    msg << "particle id " << store.id[i] << " at (" << store.position[i].x << ", "
-        << store.position[i].y << ", " << store.position[i].z << ") " << why << " along "
-        << "xyz"[d];
-    return msg.str();
-}
 }  // namespace
 
+std::string describe_leaver(std::int64_t id, const Vec3& x, int axis, const char* why) {
+    std::ostringstream msg;
+    msg << "particle id " << id << " at (" << x.x << ", " << x.y << ", " << x.z << ") " << why << " along "
+        << "xyz"[axis];
+    return msg.str();
+}
+
 void Migration::report(const ParticleStore& store, std::size_t i, int d, const char* why) {
-    if (fault_.empty()) fault_ = describe(store, i, d, why);
+    if (fault_.empty()) fault_ = describe_leaver(store.id[i], store.position[i], d, why);
 }
 
 void Migration::agree_on_faults(MPI_Comm comm) {
@@ -67,7 +65,7 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
                 continue;
             }
             if (grid.neighbour(d, side) == MPI_PROC_NULL) {
-                report(store, i, d, "left the region through a closed boundary");
+                report(store, i, d, kLeftThroughClosedFace);
                 if (!alone) keep_.push_back(static_cast<std::uint32_t>(i));
                 continue;
             }
@@ -82,7 +80,7 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
             for (int side = 0; side < 2; ++side)
                 for (int i : leaving_[side]) {
                     if (store.position[i][d] < lo[d] || store.position[i][d] >= hi[d])
-                        report(store, i, d, "moved more than a box length between list builds");
+                        report(store, i, d, kMovedMoreThanABox);
                 }
             continue;
         }
@@ -108,7 +106,7 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
             unpack_fields(store, kAllFields, recv_buffer_.data(), n_recv, first);
             for (std::size_t i = first; i < store.n_owned(); ++i)
                 if (store.position[i][d] < lo[d] || store.position[i][d] >= hi[d])
-                    report(store, i, d, "moved more than one domain between list builds");
+                    report(store, i, d, kMovedMoreThanADomain);
         }
     }
     agree_on_faults(grid.comm());

@@ -10,6 +10,15 @@
 
 namespace emergent::decomp {
 
+/// Why a particle could not be brought home (the words of the fault line).
+inline constexpr const char* kLeftThroughClosedFace = "left the region through a closed boundary";
+inline constexpr const char* kMovedMoreThanABox = "moved more than a box length between list builds";
+inline constexpr const char* kMovedMoreThanADomain = "moved more than one domain between list builds";
+
+/// The one line naming such a particle: the host's migration and the back end's list build
+/// say it alike.
+std::string describe_leaver(std::int64_t id, const Vec3& x, int axis, const char* why);
+
 /// Moves owned particles to their new owners, axis by axis (x, then y, then z), so a particle
 /// that crossed an edge or corner arrives in two or three hops. A particle crossing a periodic
 /// boundary is wrapped back into the box and its image count updated. Ghosts are dropped.

@@ -831,9 +831,7 @@ std::vector<double> Simulation::field_sums(const FieldGeometry& grid) const {
     auto* out = static_cast<double*>(m.scratch(Engine::kFieldSums, sums.size() * sizeof(double)));
     const Vec3* x = e.data(kPosition, s.position);
     exec::for_each(e.target, n, observe::FieldCellKey{grid, e.box, x, key, member});
-    int bits = 1;
-    while (bits < 32 && (std::size_t{1} << bits) < cells + 1) ++bits;
-    exec::sort_pairs(e.target, key, member, n, bits);
+    exec::sort_pairs(e.target, key, member, n, build::key_bits(cells + 1));
     exec::for_each(e.target, cells + 1, build::CellStart{key, n, start});
     exec::for_each(e.target, cells,
                    observe::FieldCellSums{grid, e.box, x, e.data(kVelocity, s.velocity), e.data(kSpecies, s.species),

@@ -144,15 +144,21 @@ void ParticleMirror::fit(ParticleStore& store) {
             a = &arrays_.back();
             backend_stale_ |= span.field;
         }
-        if (n <= a->capacity) return;
-        // Grown by 1/32 beyond the need, so that ghosts varying from build to build do not
-        // reallocate every time. Contents need not move: only a stale copy can be this small.
-        const std::size_t capacity = n + n / 32;
-        void* grown = memory_->allocate(capacity * span.element_bytes);
-        memory_->release(a->data);
-        a->data = grown;
-        a->capacity = capacity;
+        // Contents need not move: only a stale copy can be this small.
+        grow(*a, n, 0);
     });
+}
+
+void ParticleMirror::grow(Array& a, std::size_t n, std::size_t keep) {
+    if (n <= a.capacity) return;
+    // Grown by 1/32 beyond the need, so that ghosts varying from build to build do not
+    // reallocate every time.
+    const std::size_t capacity = n + n / 32;
+    void* grown = memory_->allocate(capacity * a.element_bytes);
+    if (keep > 0) memory_->within(grown, a.data, keep * a.element_bytes);
+    memory_->release(a.data);
+    a.data = grown;
+    a.capacity = capacity;
 }
 
 void ParticleMirror::to_backend(ParticleStore& store, unsigned fields) {
@@ -203,14 +209,7 @@ void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_owned
         for (auto& candidate : arrays_)
             if (candidate.field == span.field) a = &candidate;
         if (!a) throw std::logic_error("particle mirror: a field has no array on the back end");
-        if (n > a->capacity) {
-            const std::size_t capacity = n + n / 32;
-            void* grown = memory_->allocate(capacity * span.element_bytes);
-            memory_->within(grown, a->data, std::min(size_, n) * span.element_bytes);
-            memory_->release(a->data);
-            a->data = grown;
-            a->capacity = capacity;
-        }
+        grow(*a, n, std::min(size_, n));
         if (poison_) std::memset(span.data, poison_byte(span.field), n * span.element_bytes);
     });
     size_ = n;

@@ -92,6 +92,8 @@ private:
     void* find(FieldMask field) const;
     /// Gives every field of the store an array of at least store.size() elements.
     void fit(ParticleStore& store);
+    /// Gives `a` room for n elements, keeping its first `keep`.
+    void grow(Array& a, std::size_t n, std::size_t keep);
 
     struct Buffer {
         void* data = nullptr;

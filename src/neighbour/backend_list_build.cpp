@@ -9,22 +9,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "decomposition/ghost_image.hpp"
+#include "decomposition/migration.hpp"
 #include "decomposition/reductions.hpp"
 #include "neighbour/list_build_loops.hpp"
 
 namespace emergent {
 
 namespace {
-/// Bits of the largest of n values 0 .. n - 1 (at least 1): a radix sort's passes.
-int bits_for(std::size_t n) {
-    int bits = 1;
-    while (bits < 32 && (std::size_t{1} << bits) < n) ++bits;
-    return bits;
-}
+using build::key_bits;
 constexpr int kCountTag = 7301, kDataTag = 7302;
 // The mirror's staging buffers this build uses (BackendHalo's refresh uses 0 and 1).
 constexpr std::size_t kStageSend = 2, kStageReceive = 3;
@@ -63,7 +58,7 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
         append_constituents(target, mirror, store, *bodies);
     }
     const std::uint32_t* order = sort_by_cell_and_id(target, mirror, store, cells,
-                                                     bits_for(static_cast<std::size_t>(largest_id) + 1));
+                                                     key_bits(static_cast<std::size_t>(largest_id) + 1));
     if (bodies) {
         // Where the appended constituents went in the sort: the index the bodies' loops use.
         const std::size_t n = store.n_owned(), n_constituents = n - n_free_;
@@ -78,12 +73,6 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     return true;
 }
 
-namespace {
-const char* const kClosed = "left the region through a closed boundary";
-const char* const kLongJump = "moved more than a box length between list builds";
-const char* const kFarArrival = "moved more than one domain between list builds";
-}  // namespace
-
 void BackendListBuild::describe_fault(const exec::Target& target, exec::ParticleMirror& mirror,
                                       std::size_t n, const int* fault, int axis) {
     if (!fault_.empty()) return;  // the first one found is reported
@@ -95,12 +84,13 @@ void BackendListBuild::describe_fault(const exec::Target& target, exec::Particle
     // migration (axis < 0) numbers them on from 1 + 3 axis (build::fault_code).
     const int kind = axis < 0 ? (code - 1) % 3 + 1 : code;
     if (axis < 0) axis = (code - 1) / 3;
-    const Vec3 x = exec::read_one(target, mirror.array<Vec3>(kPosition) + i);
-    const std::int64_t id = exec::read_one(target, mirror.array<std::int64_t>(kId) + i);
-    std::ostringstream msg;
-    msg << "particle id " << id << " at (" << x.x << ", " << x.y << ", " << x.z << ") "
-        << (kind == 1 ? kClosed : kLongJump) << " along " << "xyz"[axis];
-    fault_ = msg.str();
+    name_fault(target, mirror, i, axis, kind == 1 ? decomp::kLeftThroughClosedFace : decomp::kMovedMoreThanABox);
+}
+
+void BackendListBuild::name_fault(const exec::Target& target, const exec::ParticleMirror& mirror, std::size_t i,
+                                  int axis, const char* why) {
+    fault_ = decomp::describe_leaver(exec::read_one(target, mirror.array<std::int64_t>(kId) + i),
+                                     exec::read_one(target, mirror.array<Vec3>(kPosition) + i), axis, why);
 }
 
 void BackendListBuild::come_home(const exec::Target& target, exec::ParticleMirror& mirror,
@@ -224,10 +214,7 @@ void BackendListBuild::migrate(const exec::Target& target, exec::ParticleMirror&
         packed[1] = send + count[0] * words;
         for (int side = 0; side < 2; ++side)
             pack(target, mirror, index[side], count[side], packed[side], false, Vec3{0, 0, 0}, 0, wedge);
-        std::uint32_t* moved = buffer(mirror, kGather, n_keep * words);
-        pack(target, mirror, kept, n_keep, moved, false, Vec3{0, 0, 0}, 0, wedge);
-        unpack(mirror, moved, n_keep, 0);
-        mirror.resize_on_backend(store, n_keep, 0);
+        gather_owned(target, mirror, store, kept, n_keep);
         for (int side = 0; side < 2; ++side) {
             const std::uint32_t* received = nullptr;
             const std::size_t n_recv = exchange(target, mirror, grid.comm(), grid.neighbour(d, side),
@@ -239,14 +226,7 @@ void BackendListBuild::migrate(const exec::Target& target, exec::ParticleMirror&
             if (fault_.empty() && n_recv > 0) {
                 const std::size_t k = exec::first_index(
                     target, n_recv, build::ArrivedOutside{mirror.array<Vec3>(kPosition), d, lo[d], hi[d], first});
-                if (k < n_recv) {
-                    const Vec3 x = exec::read_one(target, mirror.array<Vec3>(kPosition) + first + k);
-                    const std::int64_t id = exec::read_one(target, mirror.array<std::int64_t>(kId) + first + k);
-                    std::ostringstream msg;
-                    msg << "particle id " << id << " at (" << x.x << ", " << x.y << ", " << x.z << ") "
-                        << kFarArrival << " along " << "xyz"[d];
-                    fault_ = msg.str();
-                }
+                if (k < n_recv) name_fault(target, mirror, first + k, d, decomp::kMovedMoreThanADomain);
             }
         }
     }
@@ -260,10 +240,15 @@ void BackendListBuild::drop_constituents(const exec::Target& target, exec::Parti
     n_free_ = exec::exclusive_scan(target, keep, keep, n + 1);
     int* kept = reinterpret_cast<int*>(buffer(mirror, kValues, n_free_));
     exec::for_each(target, n, build::Compact{keep, kept});
-    std::uint32_t* moved = buffer(mirror, kGather, n_free_ * packed_words(mirror));
-    pack(target, mirror, kept, n_free_, moved, false, Vec3{0, 0, 0}, 0, Wedge{});
-    unpack(mirror, moved, n_free_, 0);
-    mirror.resize_on_backend(store, n_free_, 0);
+    gather_owned(target, mirror, store, kept, n_free_);
+}
+
+void BackendListBuild::gather_owned(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                                    const int* index, std::size_t count) {
+    std::uint32_t* moved = buffer(mirror, kGather, count * packed_words(mirror));
+    pack(target, mirror, index, count, moved, false, Vec3{0, 0, 0}, 0, Wedge{});
+    unpack(mirror, moved, count, 0);
+    mirror.resize_on_backend(store, count, 0);
 }
 
 void BackendListBuild::append_constituents(const exec::Target& target, exec::ParticleMirror& mirror,
@@ -305,11 +290,9 @@ const std::uint32_t* BackendListBuild::sort_by_cell_and_id(const exec::Target& t
     exec::for_each(target, n, build::IdKey{mirror.array<std::int64_t>(kId), keys, order});
     exec::sort_pairs(target, keys, order, n, id_bits);
     exec::for_each(target, n, build::CellKey{mirror.array<Vec3>(kPosition), cells.index(), keys, order, false});
-    exec::sort_pairs(target, keys, order, n, bits_for(static_cast<std::size_t>(cells.n_cells())));
+    exec::sort_pairs(target, keys, order, n, key_bits(static_cast<std::size_t>(cells.n_cells())));
     // Every array but the forces (recomputed after a build) takes the new order.
-    std::uint32_t* moved = buffer(mirror, kGather, n * packed_words(mirror));
-    pack(target, mirror, reinterpret_cast<const int*>(order), n, moved, false, Vec3{0, 0, 0}, 0, Wedge{});
-    unpack(mirror, moved, n, 0);
+    gather_owned(target, mirror, store, reinterpret_cast<const int*>(order), n);
     return order;
 }
 
@@ -407,7 +390,7 @@ void BackendListBuild::list(const exec::Target& target, exec::ParticleMirror& mi
     std::uint32_t* keys = buffer(mirror, kKeys, n);
     std::uint32_t* member = buffer(mirror, kValues, n);
     exec::for_each(target, n, build::CellKey{x, grid, keys, member, true});
-    exec::sort_pairs(target, keys, member, n, bits_for(n_cells));
+    exec::sort_pairs(target, keys, member, n, key_bits(n_cells));
     std::uint32_t* start = buffer(mirror, kCellStart, n_cells + 1);
     exec::for_each(target, n_cells + 1, build::CellStart{keys, n, start});
     // Count, scan to offsets, list.

@@ -92,6 +92,13 @@ private:
     /// ComeHome's (all axes).
     void describe_fault(const exec::Target& target, exec::ParticleMirror& mirror, std::size_t n,
                         const int* fault, int axis);
+    /// Names particle i (its id and position on the back end) in fault_, as the host would.
+    void name_fault(const exec::Target& target, const exec::ParticleMirror& mirror, std::size_t i, int axis,
+                    const char* why);
+    /// The owned particles become index[0 .. count) in that order, every array but the forces
+    /// (the store holds count owned particles after).
+    void gather_owned(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                      const int* index, std::size_t count);
     /// Every array but the forces of particles index[0 .. count), field block after field
     /// block, into `out` (on the back end); positions as images (shifted, turned) where
     /// `image`, velocities turned.

@@ -16,6 +16,13 @@
 
 namespace emergent::build {
 
+/// Bits of the largest of n sort keys 0 .. n - 1 (at least 1): a radix sort's passes.
+inline int key_bits(std::size_t n) {
+    int bits = 1;
+    while (bits < 32 && (std::size_t{1} << bits) < n) ++bits;
+    return bits;
+}
+
 /// What stopped a particle from coming home (fault codes; 0: none), ordered as the host's
 /// migration finds them: axis by axis; on an axis, closed faces first (by index), then long
 /// jumps through side 0, then through side 1 (each by index). So the smallest code, and the
