@@ -1,6 +1,6 @@
 # Shared by the benchmark scripts (sourced from the repository root): the executable, a scratch
 # folder removed on exit, mpirun as root, and the median of numbers on stdin.
-exe=$PWD/build/bin/emergent
+exe=${EMERGENT_EXE:-$PWD/build/bin/emergent}  # EMERGENT_EXE: a copy, so that a rebuild cannot change a benchmark midway
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1

@@ -37,6 +37,7 @@ inline constexpr int ok = 0;
 inline constexpr int bad_input = 2;
 inline constexpr int run_fault = 3;
 inline constexpr int io_failure = 4;
+inline constexpr int stopped = 5;  ///< stopped on request (a signal) with a checkpoint to continue
 }  // namespace exit_code
 
 /// A fault that may be seen by one rank only (particle lost, non-finite state). main() prints

@@ -11,6 +11,7 @@
 #include "app/failure_report.hpp"
 #include "app/restart_changes.hpp"
 #include "app/run.hpp"
+#include "app/stop_request.hpp"
 #include "emergent/error.hpp"
 #include "emergent/plugin.hpp"
 #include "emergent/problem.hpp"
@@ -184,6 +185,9 @@ int main(int argc, char** argv) {
     } catch (const IoError& e) {
         line = std::string("emergent: I/O error: ") + e.what();
         code = exit_code::io_failure;
+    } catch (const app::RunStopped& e) {
+        line = std::string("emergent: ") + e.what();
+        code = exit_code::stopped;
     } catch (const std::bad_alloc&) {
         line = "emergent: out of memory (lower the particle count or use more ranks or nodes)";
         code = exit_code::run_fault;

@@ -18,6 +18,7 @@
 #include "app/memory_check.hpp"
 #include "app/run_guard.hpp"
 #include "app/run_summary.hpp"
+#include "app/stop_request.hpp"
 
 namespace emergent::app {
 
@@ -134,9 +135,12 @@ void check_summary_path(const std::string& path, MPI_Comm comm) {
 
 /// Steps from wherever the simulation is to the end of the run. Steps are counted globally
 /// (0 .. n_eq + n_steps), so a continued run takes the same sampling, output and checkpoint
-/// decisions as an uninterrupted one. Returns the wall time of the measured phase.
+/// decisions as an uninterrupted one. Returns the wall time of the measured phase. A stop asked
+/// for by a signal (StopRequest) ends the loop early with a checkpoint of that step, and sets
+/// `stopped_by` to the signal.
 double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::RunOutput& output,
-               std::vector<ThermoSample>& series, Measures& last_measures) {
+               std::vector<ThermoSample>& series, Measures& last_measures,
+               StopRequest& stop_request, int& stopped_by) {
     const Config& cfg = req.config;
     const long long n_eq = cfg.integer("equilibration_steps");
     const long long end = n_eq + cfg.integer("steps");
@@ -158,7 +162,8 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
                 t0 = Clock::now();
             }
             const long long s = sim.step_index() + 1;
-            const bool checkpoint = checkpoint_every > 0 && s % checkpoint_every == 0;
+            const bool stop = stop_request.agreed();
+            const bool checkpoint = (checkpoint_every > 0 && s % checkpoint_every == 0) || stop;
             sim.step(sample_due(s));
             if (s == n_eq) problem.on_equilibrated(sim);
             // Sampled bounds (energy drift, overlaps) are checked before this step's state may
@@ -180,6 +185,10 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
             if (checkpoint)
                 io::write_checkpoint(req.output_dir + "/checkpoint.h5", sim, cfg, series,
                                      output.fields(), problem.saved_state());
+            if (stop) {
+                stopped_by = stop_request.signal();
+                break;
+            }
         }
     } catch (const InstabilityError& e) {
         throw InstabilityError(std::string(e.what()) + "; " +
@@ -196,6 +205,8 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
     prepare_output_dir(req.output_dir, comm);
     check_summary_path(req.summary_json, comm);
+    // From here a signal asks for a checkpoint at the first step it can be written.
+    StopRequest stop_request(comm, !req.output_dir.empty());
 
     Simulation sim(comm, run_settings(cfg));
     auto problem = req.problem->factory(cfg);
@@ -238,8 +249,18 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     const long long n_eq = cfg.integer("equilibration_steps");
     const long long timed_steps = n_eq + cfg.integer("steps") - std::max(sim.step_index(), n_eq);
     Measures last_measures;
-    const double wall = advance(sim, *problem, req, output, series, last_measures);
+    int stopped_by = 0;
+    const double wall = advance(sim, *problem, req, output, series, last_measures, stop_request,
+                                stopped_by);
     output.finish(sim);
+    if (stopped_by != 0) {
+        const std::string& dir = req.output_dir;
+        throw RunStopped("stopped on request (" + signal_name(stopped_by) + ") at step " +
+                         std::to_string(sim.step_index()) + " of " +
+                         std::to_string(n_eq + cfg.integer("steps")) + "; checkpoint " + dir +
+                         "/checkpoint.h5; continue with: emergent run --restart " + dir +
+                         "/checkpoint.h5 -o " + dir);
+    }
     if (series.empty()) series.push_back(sim.measure());
     if (last_measures.empty()) last_measures = problem->measures(sim);
 
