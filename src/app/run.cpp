@@ -69,7 +69,7 @@ std::string save_last_good(Simulation& sim, const RunGuard& guard, const Config&
     if (dir.empty() || !good) return at + " (run with -o DIR to keep it as a checkpoint)";
     sim.restore(*good);
     while (!series.empty() && series.back().step > good->step) series.pop_back();
-    io::write_checkpoint(dir + "/last_good.h5", sim, cfg, series, {});
+    io::write_checkpoint(dir + "/last_good.h5", sim, cfg, series, {}, guard.last_good_scene_state());
     return at + " saved in " + dir + "/last_good.h5";
 }
 }  // namespace
@@ -152,7 +152,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
         problem.on_equilibrated(sim);
         series.push_back(sim.measure());
     }
-    RunGuard guard(cfg, sim, !req.output_dir.empty());
+    RunGuard guard(cfg, sim, !req.output_dir.empty(), &problem);
     sim.reset_phase_times();
     Clock::time_point t0 = Clock::now();
     try {

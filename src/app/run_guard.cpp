@@ -9,7 +9,8 @@
 
 namespace emergent::app {
 
-RunGuard::RunGuard(const Config& config, const Simulation& sim, bool keep_state) : keep_state_(keep_state) {
+RunGuard::RunGuard(const Config& config, const Simulation& sim, bool keep_state, const Problem* scene)
+    : keep_state_(keep_state), scene_(scene) {
     limits_.max_force = config.real("guard.max_force");
     every_ = config.integer("guard.every");
     max_drift_ = sim.conserves_energy() ? config.real("guard.max_energy_drift") : 0.0;
@@ -29,7 +30,10 @@ void RunGuard::after_step(const Simulation& sim, bool now) {
 
 void RunGuard::keep(const Simulation& sim) {
     // Without a place to save it the state is not copied: its step is all that is reported.
-    if (keep_state_) sim.snapshot(last_good_);
+    if (keep_state_) {
+        sim.snapshot(last_good_);
+        if (scene_) scene_state_ = scene_->saved_state();
+    }
     good_step_ = sim.step_index();
     have_good_ = true;
 }

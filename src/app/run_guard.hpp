@@ -3,6 +3,7 @@
 #pragma once
 
 #include "emergent/config.hpp"
+#include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 
 namespace emergent::app {
@@ -16,8 +17,9 @@ class RunGuard {
 public:
     /// `keep_state`: copy the good states (only worth their memory, 64-112 bytes a particle,
     /// when the run has a directory to save the last one in); otherwise only their step is
-    /// remembered.
-    RunGuard(const Config& config, const Simulation& sim, bool keep_state);
+    /// remembered. `scene` (may be null): its running state (Problem::saved_state) is kept
+    /// with each good state, so the saved one continues as a checkpoint does.
+    RunGuard(const Config& config, const Simulation& sim, bool keep_state, const Problem* scene = nullptr);
 
     /// Runs the state checks if due (or if `now`), then remembers the state as good.
     void after_step(const Simulation& sim, bool now = false);
@@ -27,6 +29,8 @@ public:
     /// The last state that passed the checks; null when none was kept (guard.every = 0 and no
     /// checkpoint yet, or no state is kept).
     const StateSnapshot* last_good() const { return have_good_ && keep_state_ ? &last_good_ : nullptr; }
+    /// The scene's running state at the last good step (empty without a scene).
+    const Measures& last_good_scene_state() const { return scene_state_; }
     /// Step of the last state that passed the checks; -1 when none did yet.
     long long last_good_step() const { return have_good_ ? good_step_ : -1; }
 
@@ -40,6 +44,8 @@ private:
     long long good_step_ = -1;
     bool keep_state_ = true;
     StateSnapshot last_good_;
+    const Problem* scene_ = nullptr;
+    Measures scene_state_;
 };
 
 }  // namespace emergent::app

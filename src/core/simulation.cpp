@@ -138,9 +138,9 @@ struct Simulation::Engine {
     bool bodies() const { return !rigid.empty_everywhere(); }
 
     // The bodies' fields, like the particles' (above): where the step's loops over bodies read
-    // and write them.
+    // and write them. A body's kBody is the id of its first sphere (RigidBodies' append).
     static constexpr unsigned kBodyFields = kPosition | kVelocity | kForce | kSpecies | kId | kImage |
-                                            kOrientation | kAngularMomentum | kTorque;
+                                            kBody | kOrientation | kAngularMomentum | kTorque;
     ParticleStore& host_bodies() const { return const_cast<rigid::RigidBodies&>(rigid).store(); }
     /// The bodies' arrays where the loops run, holding the current values of `fields`.
     rigid::RigidBodies::Arrays body_arrays(unsigned fields) const {
@@ -291,16 +291,17 @@ struct Simulation::Engine {
     }
 
     /// `on_backend`: the build may run where the particles live (BackendListBuild; on one rank
-    /// it moves no particle array); the host builds where that does not apply (rigid bodies on
-    /// several ranks, the half list) and at initialise and restore.
+    /// it moves no particle array); the host builds for the half list, at initialise and
+    /// restore, and where the back end declines (ids beyond its 32-bit sort keys).
     void rebuild(bool on_backend = false) {
         PhaseTimer timer(times.neighbour);
-        if (on_backend && mirror && full_list && BackendListBuild::applies(bodies(), *grid)) {
+        if (on_backend && mirror && full_list) {
             if (!boundaries.empty()) agree_on_boundary_faults();
             BackendListBuild::Bodies body_tables;
             if (bodies())
-                body_tables = {&rigid, body_mirror.get(), &host_bodies(), frames_on_backend,
-                               frame_species_on_backend, frame_diameters_on_backend};
+                body_tables = {&rigid,           body_mirror.get(),        &host_bodies(),
+                               frames_on_backend, frame_species_on_backend, frame_diameters_on_backend,
+                               kBodyFields};
             if (backend_build.build(target, *mirror, store, *grid, cells, ghost_width(), list.list_cutoff(),
                                     halo, backend_halo, bodies() ? &body_tables : nullptr)) {
                 if (!backend_build.fault().empty()) throw InstabilityError(backend_build.fault());
@@ -866,6 +867,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     for (std::size_t i = 0; i < owned.n_owned(); ++i) by_id[i] = {owned.id[i], i};
     std::sort(by_id.begin(), by_id.end());
     std::vector<Vec3> current = owned.position, forces = std::move(owned.force);
+    owned.force.assign(current.size(), Vec3{0, 0, 0});  // every array whole: the build permutes all
     owned.position.assign(reference.begin(), reference.end());
     owned.position.resize(current.size());
     e.store = std::move(owned);

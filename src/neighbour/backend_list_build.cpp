@@ -38,8 +38,9 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     largest_id = decomp::max(grid.comm(), largest_id);
     if (!(largest_id < 4294967296.0)) return false;
     mirror.resize_on_backend(store, store.n_owned(), 0);
-    // With bodies (one rank): their constituents go, free particles come home, bodies come
-    // home, their constituents come back after the free ones (RigidBodies' order).
+    // With bodies: their constituents go, free particles and then bodies migrate (as the host's
+    // decomp::Migration moves each), their constituents come back after the free ones
+    // (RigidBodies' order).
     if (bodies) drop_constituents(target, mirror, store);
     const Int3 dims = grid.dims();
     if (dims[0] * dims[1] * dims[2] == 1)
@@ -51,10 +52,18 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     if (!fault_.empty()) return true;
     if (bodies) {
         bodies->mirror->to_backend(*bodies->store, kAllFields & ~(kForce | kTorque));
-        come_home(target, *bodies->mirror, *bodies->store, grid);
+        // Coming home changes where bodies are; migrating also which bodies this rank holds,
+        // so every body field the host holds is stale (forces and torques are summed anew).
+        const bool alone = dims[0] * dims[1] * dims[2] == 1;
+        if (alone)
+            come_home(target, *bodies->mirror, *bodies->store, grid);
+        else
+            migrate(target, *bodies->mirror, *bodies->store, grid);
         fault_ = decomp::first_message(grid.comm(), fault_);
         if (!fault_.empty()) return true;
-        bodies->mirror->written_on_backend(*bodies->store, kPosition | kVelocity | kImage);
+        n_free_ = store.n_owned();  // the free particles this rank holds after their migration
+        bodies->mirror->written_on_backend(*bodies->store,
+                                           alone ? kPosition | kVelocity | kImage : bodies->fields);
         append_constituents(target, mirror, store, *bodies);
     }
     const std::uint32_t* order = sort_by_cell_and_id(target, mirror, store, cells,

@@ -1,14 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The list build where the particles live: migration, the cell order, ghosts, cells and the
 // full Verlet list, all as loops through the execution layer on the back end's arrays (with
-// rigid bodies on one rank: their constituents dropped, the bodies brought home and their
-// constituents placed again, as RigidBodies does on the host), so on
-// one rank a build moves no particle array between host and device (only counts come back);
-// with several ranks what crosses a domain face is packed there and staged through host
-// memory for MPI. It gives the host build's particle order, ghosts and list bit for bit
+// rigid bodies: their constituents dropped, the bodies migrated whole and their constituents
+// placed again, as RigidBodies does on the host), so on one rank a build moves no particle
+// array between host and device (only counts come back); with several ranks what crosses a
+// domain face, particles and bodies alike, is packed there and staged through host memory for
+// MPI. It gives the host build's particle order, ghosts and list bit for bit
 // (list_build_loops.hpp), so a run continues the same whichever builds. It covers free
-// particles in periodic, walled and wedge regions on any rank count, and rigid bodies on one
-// rank; with bodies on several ranks the engine builds on the host.
+// particles and rigid bodies in periodic, walled and wedge regions on any rank count.
 #pragma once
 
 #include <cstddef>
@@ -31,14 +30,6 @@ namespace emergent {
 
 class BackendListBuild {
 public:
-    /// Whether this build applies: without rigid bodies, or with them on one rank (bodies
-    /// crossing between ranks migrate in host code); ids below 2^32 (the sort keys) are
-    /// checked at each build.
-    static bool applies(bool bodies, const decomp::RankGrid& grid) {
-        const Int3 d = grid.dims();
-        return !bodies || d[0] * d[1] * d[2] == 1;
-    }
-
     /// The bodies' side of a build with rigid bodies: their arrays (a second mirror of their
     /// store) and their kinds' tables on the back end (frames; constituent species and
     /// diameters aligned with the frame positions).
@@ -49,6 +40,7 @@ public:
         rigid::FrameTable frames{};
         const int* species = nullptr;
         const double* diameters = nullptr;
+        unsigned fields = 0;  ///< the fields the engine keeps of bodies (stale on the host after a migration)
     };
 
     /// Builds on the back end. Every field but forces must be current there or on the host

@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Stress cases: each run either finishes with the right physics or stops with the right
 # one-line message (exit 3) and, with -o, a restartable last good state.
-# usage: stress.sh EMERGENT EXPECT_ERROR
+# usage: stress.sh EMERGENT EXPECT_ERROR MPIRUN
 set -euo pipefail
 exe=$1
 expect=$2
+mpirun=$3
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 json() { grep -o "\"$2\": [-0-9.e+]*" "$1" | awk '{print $2}'; }
@@ -22,6 +23,20 @@ tiny=(--preset tiny --set progress_interval=0)
   --set steps=4000 \
   --summary-json "$dir/hot.json" >/dev/null
 check "$(json "$dir/hot.json" mean_temperature)" "v > 95 && v < 105" "hot run temperature"
+
+# Rigid bodies among free particles (capsomers in solvent), pushed far past a stable step:
+# the last good state is restored and saved, on the host and on the checking back end (whose
+# build migrates bodies between ranks), and the run continues from it at the scene's own step.
+for case in "1 host" "2 checking"; do
+  read -r np backend <<<"$case"
+  "$expect" --code 3 "run stopped: .*went unstable.*last good state at step 10 saved in" \
+    "$mpirun" -q --allow-run-as-root --oversubscribe -np "$np" "$exe" run capsid-assembly "${tiny[@]}" \
+    --set backend="$backend" --set dt=0.05 --set guard.every=10 -o "$dir/capsid$np"
+  "$mpirun" -q --allow-run-as-root --oversubscribe -np "$np" "$exe" run \
+    --restart "$dir/capsid$np/last_good.h5" --set dt=0.005 --set steps=200 --set backend="$backend" \
+    --summary-json "$dir/capsid$np.json" >/dev/null
+  check "$(json "$dir/capsid$np.json" N)" "v == 4467" "capsid continued from its last good state ($np ranks, $backend)"
+done
 
 # Dense (WCA solid, rho = 1.2) and dilute (rho = 0.01, near-ideal gas) states run correctly.
 "$exe" run lj-fluid "${tiny[@]}" --set density=1.2 --summary-json "$dir/dense.json" >/dev/null
