@@ -7,6 +7,7 @@
 
 #include "field_packing.hpp"
 #include "ghost_image.hpp"
+#include "message_tally.hpp"
 
 namespace emergent::decomp {
 
@@ -16,14 +17,12 @@ constexpr int kDataTag = 7102;
 }  // namespace
 
 void HaloExchange::exchange(const Swap& swap, const void* send, std::size_t send_bytes,
-                            void* recv, std::size_t recv_bytes, int tag) const {
+                            void* recv, std::size_t recv_bytes, int tag, MessageCounts& tally) const {
     if (swap.to_self) {
         if (send_bytes) std::memcpy(recv, send, send_bytes);
         return;
     }
-    MPI_Sendrecv(send, static_cast<int>(send_bytes), MPI_BYTE, swap.send_rank, tag, recv,
-                 static_cast<int>(recv_bytes), MPI_BYTE, swap.recv_rank, tag, comm_,
-                 MPI_STATUS_IGNORE);
+    send_receive(send, send_bytes, swap.send_rank, recv, recv_bytes, swap.recv_rank, tag, comm_, tally);
 }
 
 void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double width,
@@ -58,14 +57,13 @@ void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double widt
             if (swap.to_self)
                 n_recv = n_send;
             else
-                MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, swap.send_rank, kCountTag, &n_recv, 1,
-                             MPI_UNSIGNED_LONG, swap.recv_rank, kCountTag, comm_,
-                             MPI_STATUS_IGNORE);
+                send_receive(&n_send, sizeof n_send, swap.send_rank, &n_recv, sizeof n_recv,
+                             swap.recv_rank, kCountTag, comm_, build_traffic_);
             send_buffer_.clear();
             pack_fields_shifted(store, fields, swap, stride);
             recv_buffer_.resize(n_recv * stride);
             exchange(swap, send_buffer_.data(), send_buffer_.size(), recv_buffer_.data(),
-                     recv_buffer_.size(), kDataTag);
+                     recv_buffer_.size(), kDataTag, build_traffic_);
             swap.import_first = store.size();
             swap.import_count = n_recv;
             store.resize_ghosts(store.n_ghost() + n_recv);
@@ -176,7 +174,7 @@ void HaloExchange::gather(std::vector<Vec3>& field, bool is_position) {
                                wedge_, swap.turns, offset};
         for (std::size_t k = 0; k < n; ++k) image(k);
         exchange(swap, send_vectors_.data(), n * sizeof(Vec3), field.data() + swap.import_first,
-                 swap.import_count * sizeof(Vec3), kDataTag);
+                 swap.import_count * sizeof(Vec3), kDataTag, refresh_traffic_);
     }
 }
 
@@ -187,7 +185,7 @@ HaloExchange::SwapPlan HaloExchange::swap_plan(std::size_t k) const {
 
 void HaloExchange::exchange_bytes(std::size_t k, const void* send, std::size_t send_bytes,
                                   void* recv, std::size_t recv_bytes) const {
-    exchange(swaps_.at(k), send, send_bytes, recv, recv_bytes, kDataTag);
+    exchange(swaps_.at(k), send, send_bytes, recv, recv_bytes, kDataTag, refresh_traffic_);
 }
 
 }  // namespace emergent::decomp

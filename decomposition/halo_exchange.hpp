@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "emergent/message_counts.hpp"
 #include "emergent/particle_store.hpp"
 #include "rank_grid.hpp"
 
@@ -62,6 +63,11 @@ public:
     void exchange_bytes(std::size_t k, const void* send, std::size_t send_bytes, void* recv,
                         std::size_t recv_bytes) const;
 
+    /// What this rank sent to others since it was made: refreshes (gather_* and
+    /// exchange_bytes) and builds.
+    const MessageCounts& refresh_traffic() const { return refresh_traffic_; }
+    const MessageCounts& build_traffic() const { return build_traffic_; }
+
 private:
     void gather(std::vector<Vec3>& field, bool is_position);
 
@@ -79,7 +85,7 @@ private:
     void pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
                              std::size_t stride);
     void exchange(const Swap& swap, const void* send, std::size_t send_bytes, void* recv,
-                  std::size_t recv_bytes, int tag) const;
+                  std::size_t recv_bytes, int tag, MessageCounts& tally) const;
 
     MPI_Comm comm_ = MPI_COMM_NULL;
     Wedge wedge_;
@@ -88,6 +94,8 @@ private:
     std::vector<Vec3> send_vectors_;
     std::size_t n_ghost_ = 0;
     bool exports_elsewhere_ = false;  ///< adopt_plan(): the export lists are on the back end
+    // Counted in const refreshes (exchange_bytes) too.
+    mutable MessageCounts refresh_traffic_, build_traffic_;
 };
 
 }  // namespace emergent::decomp

@@ -7,6 +7,7 @@
 
 #include "emergent/error.hpp"
 #include "field_packing.hpp"
+#include "message_tally.hpp"
 #include "reductions.hpp"
 
 namespace emergent::decomp {
@@ -94,13 +95,11 @@ void Migration::apply(ParticleStore& store, const RankGrid& grid) {
         for (int side = 0; side < 2; ++side) {
             unsigned long n_send = leaving_[side].size(), n_recv = 0;
             const int to = grid.neighbour(d, side), from = grid.neighbour(d, 1 - side);
-            MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, to, kCountTag, &n_recv, 1,
-                         MPI_UNSIGNED_LONG, from, kCountTag, grid.comm(), MPI_STATUS_IGNORE);
+            send_receive(&n_send, sizeof n_send, to, &n_recv, sizeof n_recv, from, kCountTag,
+                         grid.comm(), traffic_);
             recv_buffer_.resize(n_recv * stride);
-            MPI_Sendrecv(send_buffer_[side].data(), static_cast<int>(send_buffer_[side].size()),
-                         MPI_BYTE, to, kDataTag, recv_buffer_.data(),
-                         static_cast<int>(recv_buffer_.size()), MPI_BYTE, from, kDataTag,
-                         grid.comm(), MPI_STATUS_IGNORE);
+            send_receive(send_buffer_[side].data(), send_buffer_[side].size(), to, recv_buffer_.data(),
+                         recv_buffer_.size(), from, kDataTag, grid.comm(), traffic_);
             const std::size_t first = store.n_owned();
             store.resize_owned(first + n_recv);
             unpack_fields(store, kAllFields, recv_buffer_.data(), n_recv, first);

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "emergent/message_counts.hpp"
 #include "emergent/particle_store.hpp"
 #include "rank_grid.hpp"
 
@@ -29,6 +30,8 @@ std::string describe_leaver(std::int64_t id, const Vec3& x, int axis, const char
 class Migration {
 public:
     void apply(ParticleStore& store, const RankGrid& grid);
+    /// What this rank sent to others since it was made.
+    const MessageCounts& traffic() const { return traffic_; }
 
 private:
     void report(const ParticleStore& store, std::size_t i, int d, const char* why);
@@ -38,6 +41,7 @@ private:
     std::vector<int> leaving_[2];
     std::vector<char> send_buffer_[2], recv_buffer_;
     std::vector<std::uint32_t> keep_;
+    MessageCounts traffic_;
 };
 
 }  // namespace emergent::decomp

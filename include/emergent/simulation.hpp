@@ -12,6 +12,7 @@
 #include "emergent/box.hpp"
 #include "emergent/field_grid.hpp"
 #include "emergent/force_term.hpp"
+#include "emergent/message_counts.hpp"
 #include "emergent/particle_store.hpp"
 #include "emergent/thermostat.hpp"
 #include "emergent/wall_layer.hpp"
@@ -120,6 +121,7 @@ struct BodyLangevinSettings {
 /// Wall-clock seconds spent in each part of the step (this rank).
 struct PhaseTimes {
     double neighbour = 0;  ///< migration, sorting, ghost build, cell and Verlet lists
+    double migrate = 0;    ///< of `neighbour`: particles and bodies moved to their new owners
     double force = 0;
     double integrate = 0;  ///< both half steps and the thermostat
     double communicate = 0;  ///< ghost position refresh and the rebuild check
@@ -262,6 +264,11 @@ public:
     /// True when total energy should be conserved: no thermostat, every force term conservative.
     bool conserves_energy() const;
     const PhaseTimes& phase_times() const;
+    /// Point-to-point messages and bytes this rank sent to other ranks since the last
+    /// reset_phase_times(), by purpose (ghost refresh, ghost build, migration); collectives
+    /// (the rebuild vote, sums) are not counted. What the communication model is checked against.
+    MessageTraffic message_traffic() const;
+    /// Zeroes phase_times() and message_traffic(): the measured phase starts.
     void reset_phase_times();
 
 private:

@@ -58,7 +58,7 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     const ThermoSample& first = series.front();
     const ThermoSample& last = series.back();
     std::ostringstream json;
-    auto field = [&](const char* name, const std::string& value, bool comma = true) {
+    auto field = [&](const std::string& name, const std::string& value, bool comma = true) {
         json << "  \"" << name << "\": " << value << (comma ? ",\n" : "\n");
     };
     json << "{\n";
@@ -87,7 +87,21 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     field("seconds_neighbour", number(decomp::max(comm, p.neighbour)));
     field("seconds_force", number(decomp::max(comm, p.force)));
     field("seconds_integrate", number(decomp::max(comm, p.integrate)));
+    field("seconds_migrate", number(decomp::max(comm, p.migrate)));
     field("seconds_communicate", number(decomp::max(comm, p.communicate)));
+    // Load imbalance: how much longer the slowest rank computed (forces and integration) than
+    // the ranks' mean, time the others spend waiting at the next exchange.
+    const double compute = p.force + p.integrate;
+    field("seconds_imbalance", number(decomp::max(comm, compute) - decomp::sum(comm, compute) / sim.n_ranks()));
+    // Point-to-point traffic of the measured phase, summed over ranks (Simulation::message_traffic).
+    const MessageTraffic traffic = sim.message_traffic();
+    auto put_traffic = [&](const char* purpose, const MessageCounts& c) {
+        field(std::string("messages_") + purpose, std::to_string(decomp::sum(comm, c.messages)));
+        field(std::string("message_bytes_") + purpose, std::to_string(decomp::sum(comm, c.bytes)));
+    };
+    put_traffic("ghost_refresh", traffic.ghost_refresh);
+    put_traffic("ghost_build", traffic.ghost_build);
+    put_traffic("migration", traffic.migration);
     if (!scene_measures.empty()) {
         // The scene's own measures at the last sample.
         std::string scene = "{";

@@ -60,6 +60,7 @@ struct Simulation::Engine {
     std::string boundary_fault;  ///< first particle a rule could not return, since last check
     decomp::Migration migration;
     decomp::HaloExchange halo;
+    MessageTraffic traffic_at_reset;  ///< the counters when the measured phase began
     CellList cells;
     NeighbourList list;
     ForceSums sums;
@@ -305,6 +306,7 @@ struct Simulation::Engine {
             if (backend_build.build(target, *mirror, store, *grid, cells, ghost_width(), list.list_cutoff(),
                                     halo, backend_halo, bodies() ? &body_tables : nullptr)) {
                 if (!backend_build.fault().empty()) throw InstabilityError(backend_build.fault());
+                times.migrate += backend_build.take_migration_seconds();
                 list_offset = backend_build.offsets();
                 list_index = backend_build.neighbours();
                 reference_on_backend = backend_build.reference();
@@ -326,12 +328,13 @@ struct Simulation::Engine {
         bodies_to_host(kBodyFields);  // bodies migrate and place their constituents (host code)
         bodies_host_wrote(kBodyFields);
         if (bodies()) rigid.drop_constituents(store);
-        migration.apply(store, *grid);
-        if (bodies()) {
+        {
+            PhaseTimer migrating(times.migrate);
+            migration.apply(store, *grid);
             // Bodies move whole, by their centre of mass; their spheres follow.
-            rigid.migrate(*grid);
-            rigid.append_constituents(store);
+            if (bodies()) rigid.migrate(*grid);
         }
+        if (bodies()) rigid.append_constituents(store);
         // Cell order gives the force loop neighbours that sit close in memory.
         cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
         store.permute_owned(order, kAllFields & ~kForce);  // forces are recomputed after a build
@@ -1093,6 +1096,30 @@ bool Simulation::conserves_energy() const {
     return true;
 }
 const PhaseTimes& Simulation::phase_times() const { return engine_->times; }
-void Simulation::reset_phase_times() { engine_->times = PhaseTimes{}; }
+
+MessageTraffic Simulation::message_traffic() const {
+    const Engine& e = *engine_;
+    MessageTraffic t;
+    t.ghost_refresh = e.halo.refresh_traffic();
+    t.ghost_build = e.halo.build_traffic();
+    t.ghost_build += e.backend_build.ghost_traffic();
+    t.migration = e.migration.traffic();
+    t.migration += e.backend_build.migration_traffic();
+    t.migration += e.rigid.migration_traffic();
+    const MessageTraffic& from = e.traffic_at_reset;
+    auto since = [](MessageCounts now, const MessageCounts& then) {
+        now.messages -= then.messages;
+        now.bytes -= then.bytes;
+        return now;
+    };
+    return {since(t.ghost_refresh, from.ghost_refresh), since(t.ghost_build, from.ghost_build),
+            since(t.migration, from.migration)};
+}
+
+void Simulation::reset_phase_times() {
+    engine_->times = PhaseTimes{};
+    engine_->traffic_at_reset = MessageTraffic{};
+    engine_->traffic_at_reset = message_traffic();
+}
 
 }  // namespace emergent

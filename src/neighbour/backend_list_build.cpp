@@ -8,10 +8,12 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "decomposition/ghost_image.hpp"
+#include "decomposition/message_tally.hpp"
 #include "decomposition/migration.hpp"
 #include "decomposition/reductions.hpp"
 #include "neighbour/list_build_loops.hpp"
@@ -43,7 +45,9 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     // (RigidBodies' order).
     if (bodies) drop_constituents(target, mirror, store);
     const Int3 dims = grid.dims();
-    if (dims[0] * dims[1] * dims[2] == 1)
+    const bool alone = dims[0] * dims[1] * dims[2] == 1;
+    const auto started = std::chrono::steady_clock::now();  // the migrations, timed (PhaseTimes)
+    if (alone)
         come_home(target, mirror, store, grid);
     else
         migrate(target, mirror, store, grid);
@@ -52,16 +56,18 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     if (!fault_.empty()) return true;
     if (bodies) {
         bodies->mirror->to_backend(*bodies->store, kAllFields & ~(kForce | kTorque));
-        // Coming home changes where bodies are; migrating also which bodies this rank holds,
-        // so every body field the host holds is stale (forces and torques are summed anew).
-        const bool alone = dims[0] * dims[1] * dims[2] == 1;
         if (alone)
             come_home(target, *bodies->mirror, *bodies->store, grid);
         else
             migrate(target, *bodies->mirror, *bodies->store, grid);
         fault_ = decomp::first_message(grid.comm(), fault_);
         if (!fault_.empty()) return true;
+    }
+    migration_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (bodies) {
         n_free_ = store.n_owned();  // the free particles this rank holds after their migration
+        // Coming home changes where bodies are; migrating also which bodies this rank holds,
+        // so every body field the host holds is stale (forces and torques are summed anew).
         bodies->mirror->written_on_backend(*bodies->store,
                                            alone ? kPosition | kVelocity | kImage : bodies->fields);
         append_constituents(target, mirror, store, *bodies);
@@ -157,26 +163,25 @@ void BackendListBuild::unpack(exec::ParticleMirror& mirror, const std::uint32_t*
 
 std::size_t BackendListBuild::exchange(const exec::Target& target, exec::ParticleMirror& mirror, MPI_Comm comm,
                                        int to, int from, const std::uint32_t* packed, std::size_t count,
-                                       std::size_t slot, const std::uint32_t** received) {
+                                       std::size_t slot, const std::uint32_t** received,
+                                       MessageCounts& tally) {
     const std::size_t record = packed_words(mirror) * sizeof(std::uint32_t);
     unsigned long n_send = count, n_recv = 0;
-    MPI_Sendrecv(&n_send, 1, MPI_UNSIGNED_LONG, to, kCountTag, &n_recv, 1, MPI_UNSIGNED_LONG, from,
-                 kCountTag, comm, MPI_STATUS_IGNORE);
+    decomp::send_receive(&n_send, sizeof n_send, to, &n_recv, sizeof n_recv, from, kCountTag, comm, tally);
     std::uint32_t* on_backend = buffer(mirror, slot, n_recv * (record / 4));
     *received = on_backend;
     if (target.device && exec::mpi_reads_device_memory()) {
         // CUDA-aware MPI reads and writes device memory: no staging; the packing must be done.
         exec::synchronize(target);
-        MPI_Sendrecv(packed, static_cast<int>(count * record), MPI_BYTE, to, kDataTag, on_backend,
-                     static_cast<int>(n_recv * record), MPI_BYTE, from, kDataTag, comm, MPI_STATUS_IGNORE);
+        decomp::send_receive(packed, count * record, to, on_backend, n_recv * record, from, kDataTag, comm,
+                             tally);
         return n_recv;
     }
     void* send = mirror.staging(kStageSend, count * record);
     void* receive = mirror.staging(kStageReceive, n_recv * record);
     // A face without a neighbour (a wall) moves nothing, but every rank takes part.
     if (count > 0) mirror.copy_to_host(send, packed, count * record);
-    MPI_Sendrecv(send, static_cast<int>(count * record), MPI_BYTE, to, kDataTag, receive,
-                 static_cast<int>(n_recv * record), MPI_BYTE, from, kDataTag, comm, MPI_STATUS_IGNORE);
+    decomp::send_receive(send, count * record, to, receive, n_recv * record, from, kDataTag, comm, tally);
     if (n_recv > 0) mirror.copy_to_backend(on_backend, receive, n_recv * record);
     return n_recv;
 }
@@ -228,7 +233,7 @@ void BackendListBuild::migrate(const exec::Target& target, exec::ParticleMirror&
             const std::uint32_t* received = nullptr;
             const std::size_t n_recv = exchange(target, mirror, grid.comm(), grid.neighbour(d, side),
                                                 grid.neighbour(d, 1 - side), packed[side], count[side],
-                                                kReceive, &received);
+                                                kReceive, &received, migration_traffic_);
             const std::size_t first = store.n_owned();
             mirror.resize_on_backend(store, first + n_recv, 0);
             unpack(mirror, received, n_recv, first);
@@ -341,7 +346,8 @@ void BackendListBuild::append_images(const exec::Target& target, exec::ParticleM
         std::uint32_t* packed = buffer(mirror, kSend, count * packed_words(mirror));
         pack(target, mirror, index, count, packed, true, plan.shift, plan.turns, wedge);
         const std::uint32_t* received = nullptr;
-        plan.import_count = exchange(target, mirror, comm, to, from, packed, count, kReceive, &received);
+        plan.import_count =
+            exchange(target, mirror, comm, to, from, packed, count, kReceive, &received, ghost_traffic_);
         mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + plan.import_count);
         unpack(mirror, received, plan.import_count, plan.import_first);
     }

@@ -57,6 +57,15 @@ public:
     /// The first particle that could not be brought home (of the first rank with one),
     /// described as the host's migration does; empty if none.
     const std::string& fault() const { return fault_; }
+    /// What this rank sent to others in builds since it was made: migration, ghosts.
+    const MessageCounts& migration_traffic() const { return migration_traffic_; }
+    const MessageCounts& ghost_traffic() const { return ghost_traffic_; }
+    /// Wall seconds the migrations of particles and bodies took since the last call.
+    double take_migration_seconds() {
+        const double s = migration_seconds_;
+        migration_seconds_ = 0;
+        return s;
+    }
     /// The full list on the back end (CSR: neighbours of i are index[offset[i] .. offset[i+1])).
     const std::uint32_t* offsets() const { return offsets_; }
     const std::uint32_t* neighbours() const { return neighbours_; }
@@ -104,7 +113,7 @@ private:
     /// MPI reads device memory); returns how many came, *received where.
     std::size_t exchange(const exec::Target& target, exec::ParticleMirror& mirror, MPI_Comm comm, int to, int from,
                          const std::uint32_t* packed, std::size_t count, std::size_t slot,
-                         const std::uint32_t** received);
+                         const std::uint32_t** received, MessageCounts& tally);
     /// 32-bit words per particle of every array but the forces.
     unsigned packed_words(const exec::ParticleMirror& mirror) const;
     /// Drops the constituents of bodies (free particles close ranks, in order).
@@ -140,6 +149,8 @@ private:
     std::size_t n_pairs_ = 0;
     const Vec3* reference_ = nullptr;
     rigid::ConstituentIndex constituents_{};
+    MessageCounts migration_traffic_, ghost_traffic_;
+    double migration_seconds_ = 0;
     std::size_t n_free_ = 0;  ///< free particles before the constituents, at the last build
     std::vector<decomp::HaloExchange::SwapPlan> plans_;
     std::vector<const int*> swap_index_;

@@ -47,6 +47,8 @@ public:
     /// constituents again. Free particles are migrated by the caller before this.
     void drop_constituents(ParticleStore& store) const;
     void migrate(const decomp::RankGrid& grid) { migration_.apply(bodies_, grid); }
+    /// What the host's migrations of bodies sent to other ranks.
+    const MessageCounts& migration_traffic() const { return migration_.traffic(); }
     void append_constituents(ParticleStore& store) const;
     /// After particles were reordered: where each body's constituents are.
     void index_constituents(const ParticleStore& store);
