@@ -91,7 +91,7 @@ Schema run_schema() {
               "energy per particle drifts further (0: no bound)")
         .integer("output.every", 0, 0, 1e12, "steps",
                  "steps between particle frames in trajectory.h5 (0: first and last frame only)")
-        .text("output.elements", "position,velocity,species,id,image",
+        .text("output.elements", "position,velocity,species,id,image,diameter",
               "particle elements written per frame (comma-separated)");
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})

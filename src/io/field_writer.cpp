@@ -51,30 +51,6 @@ void append(hid_t set, hid_t type, const void* data, hsize_t frame_index) {
 }
 
 /// A view of frame k of `source` (path inside the same file) as its own dataset.
-void add_frame_view(hid_t group, const std::string& name, hid_t source_set,
-                    const std::string& source_path, hsize_t k) {
-    H5Id src_space(H5Dget_space(source_set));
-    const int rank = H5Sget_simple_extent_ndims(src_space);
-    std::vector<hsize_t> dims(rank), start(rank, 0), count(rank);
-    H5Sget_simple_extent_dims(src_space, dims.data(), nullptr);
-    start[0] = k;
-    count = dims;
-    count[0] = 1;
-    H5Sselect_hyperslab(src_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
-    H5Id view_space(H5Screate_simple(rank - 1, dims.data() + 1, nullptr));
-    H5Id dcpl(H5Pcreate(H5P_DATASET_CREATE));
-    h5_check(H5Pset_virtual(dcpl, view_space, ".", source_path.c_str(), src_space), "frame view");
-    H5Id view(h5_check(H5Dcreate2(group, name.c_str(), H5T_NATIVE_DOUBLE, view_space, H5P_DEFAULT,
-                                  dcpl, H5P_DEFAULT),
-                       "frame view " + name));
-}
-
-std::string frame_name(std::size_t k) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%06zu", k);
-    return buf;
-}
-
 std::string dims_text(const std::vector<hsize_t>& d) {
     std::ostringstream o;
     for (std::size_t k = 0; k < d.size(); ++k) o << (k ? " " : "") << d[k];
@@ -165,7 +141,7 @@ void FieldWriter::write(std::size_t g, long long step, double time, const FieldF
         append(value, H5T_NATIVE_DOUBLE, data[q]->data(), k);
         H5Id frames = open_group(qg, "frames");
         add_frame_view(frames, frame_name(k), value,
-                       "/fields/" + grid.name + "/" + kQuantities[q] + "/value", k);
+                       "/fields/" + grid.name + "/" + kQuantities[q] + "/value", k, H5T_NATIVE_DOUBLE);
     }
     H5Fflush(file_, H5F_SCOPE_GLOBAL);
     frames_[g].push_back({step, time});

@@ -2,6 +2,8 @@
 // Checked parallel-HDF5 helpers.
 #include "io/h5.hpp"
 
+#include <cstdio>
+
 #include "emergent/error.hpp"
 
 namespace emergent::io {
@@ -86,6 +88,29 @@ H5Id open_file(const std::string& path, MPI_Comm comm, bool writable) {
     H5E_END_TRY;
     if (f < 0) throw InputError("cannot open '" + path + "': missing, truncated or not HDF5");
     return H5Id(f);
+}
+
+void add_frame_view(hid_t group, const std::string& name, hid_t source_set,
+                    const std::string& source_path, hsize_t k, hid_t type) {
+    H5Id src_space(H5Dget_space(source_set));
+    const int rank = H5Sget_simple_extent_ndims(src_space);
+    std::vector<hsize_t> dims(rank), start(rank, 0), count(rank);
+    H5Sget_simple_extent_dims(src_space, dims.data(), nullptr);
+    start[0] = k;
+    count = dims;
+    count[0] = 1;
+    H5Sselect_hyperslab(src_space, H5S_SELECT_SET, start.data(), nullptr, count.data(), nullptr);
+    H5Id view_space(H5Screate_simple(rank - 1, dims.data() + 1, nullptr));
+    H5Id dcpl(H5Pcreate(H5P_DATASET_CREATE));
+    h5_check(H5Pset_virtual(dcpl, view_space, ".", source_path.c_str(), src_space), "frame view");
+    H5Id view(h5_check(H5Dcreate2(group, name.c_str(), type, view_space, H5P_DEFAULT, dcpl, H5P_DEFAULT),
+                       "frame view " + name));
+}
+
+std::string frame_name(std::size_t k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%06zu", k);
+    return buf;
 }
 
 H5Id create_group(hid_t parent, const std::string& name) {

@@ -61,6 +61,15 @@ double read_double_attribute(hid_t object, const std::string& name);
 void write_small_dataset(hid_t parent, const std::string& name, hid_t type,
                          const std::vector<hsize_t>& shape, const void* data, MPI_Comm comm);
 
+/// A view (an HDF5 virtual dataset, no copy) named `name` in `group` of frame k of
+/// `source_set` (at `source_path` in the same file): value[k] of a [frames, ...] time series.
+/// XDMF sidecars point at such views, which every ParaView XDMF reader accepts. Collective in a
+/// file opened by several ranks.
+void add_frame_view(hid_t group, const std::string& name, hid_t source_set,
+                    const std::string& source_path, hsize_t k, hid_t type);
+/// "000042": the name of frame k's view.
+std::string frame_name(std::size_t k);
+
 /// Reads a whole float64 dataset on every rank (collectively); empty if it has no elements.
 std::vector<double> read_doubles(hid_t parent, const std::string& name);
 

@@ -4,20 +4,26 @@
 
 #include <algorithm>
 #include <cstring>
+#include <sstream>
 
 #include "emergent/build_info.hpp"
 #include "emergent/error.hpp"
+#include "io/atomic_file.hpp"
 #include "io/id_order.hpp"
 
 namespace emergent::io {
 
 const std::vector<std::string>& H5mdWriter::known_elements() {
-    static const std::vector<std::string> names{"position", "velocity", "species", "id", "image"};
+    static const std::vector<std::string> names{"position", "velocity", "species", "id", "image", "diameter"};
     return names;
 }
 
 H5mdWriter::H5mdWriter(const std::string& path, MPI_Comm comm, const H5mdMetadata& meta)
     : comm_(comm), meta_(meta) {
+    // The XDMF sidecar sits beside the file: DIR/STEM.h5 -> DIR/STEM.xmf.
+    const std::size_t slash = path.find_last_of('/');
+    file_name_ = slash == std::string::npos ? path : path.substr(slash + 1);
+    sidecar_ = path.substr(0, path.size() - (file_name_.size() - file_name_.find_last_of('.')));
     int n_ranks = 1;
     MPI_Comm_size(comm, &n_ranks);
     file_ = create_file(path, comm);
@@ -73,8 +79,12 @@ void H5mdWriter::add_group(const std::string& name, const std::string& key, long
         if (e == "image") type = H5T_NATIVE_INT;
         if (e == "species") type = H5T_NATIVE_INT, frame = {n};
         if (e == "id") type = H5T_NATIVE_LLONG, frame = {n};
+        if (e == "diameter") frame = {n};
         series_[key + e] = std::make_unique<TimeSeries>(group, e, type, frame);
     }
+    H5Id frames = create_group(group, "frames");
+    for (const std::string& e : elements) create_group(frames, e);
+    groups_[key] = Shown{name, n_global, elements, {}};
 }
 
 void H5mdWriter::write_group(const std::string& key, const ParticleStore& store, long long n_global,
@@ -96,6 +106,78 @@ void H5mdWriter::write_group(const std::string& key, const ParticleStore& store,
         if (e == "species") write(e, store.species.data(), sizeof(int));
         if (e == "id") write(e, store.id.data(), sizeof(std::int64_t));
         if (e == "image") write(e, store.image.data(), sizeof(Int3));
+        if (e == "diameter") {
+            const std::vector<Real> ones(store.has_diameters() ? 0 : store.n_owned(), 1.0);
+            write(e, store.has_diameters() ? store.diameter.data() : ones.data(), sizeof(Real));
+        }
+    }
+    // What a viewer reads: each element's frame as a dataset of its own (a view, no copy), and
+    // once the particles' connectivity (0..N-1), which ParaView's XDMF3 readers need to show
+    // points. Then the sidecar names them all.
+    Shown& shown = groups_.at(key);
+    const std::string root = "/particles/" + shown.name;
+    if (shown.times.empty()) {
+        std::vector<std::int64_t> ids(order.count());
+        for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = order.first() + static_cast<long long>(i);
+        H5Id group = open_group(particles_, shown.name);
+        write_rows(group, "connectivity", H5T_NATIVE_LLONG, n_global, 0, ids.data(), order.first(), ids.size());
+    }
+    const hsize_t k = shown.times.size();
+    H5Id frames = open_group(particles_, shown.name + "/frames");
+    for (const std::string& e : elements) {
+        const TimeSeries& series = *series_.at(key + e);
+        H5Id group = open_group(frames, e);
+        add_frame_view(group, frame_name(k), series.value(), root + "/" + e + "/value", k, series.type());
+    }
+    shown.times.push_back(time);
+    write_sidecar();
+}
+
+void H5mdWriter::write_sidecar() const {
+    int rank = 0;
+    MPI_Comm_rank(comm_, &rank);
+    if (rank != 0) return;
+    // One sidecar per group: ParaView's Xdmf3ReaderS merges the grids of one file into a single
+    // point set, which would mix spheres and bodies.
+    for (const auto& [key, shown] : groups_) {
+        if (shown.times.empty()) continue;
+        std::ostringstream x;
+        x.precision(17);
+        x << "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"
+          << "<Xdmf Version=\"2.0\">\n <Domain>\n";
+        const std::string n = std::to_string(shown.n_global);
+        const std::string root = file_name_ + ":/particles/" + shown.name;
+        x << "  <Grid Name=\"" << shown.name << "\" GridType=\"Collection\" CollectionType=\"Temporal\">\n";
+        for (std::size_t k = 0; k < shown.times.size(); ++k) {
+            const std::string frame = frame_name(k);
+            x << "   <Grid Name=\"" << shown.name << "_" << frame << "\" GridType=\"Uniform\">\n"
+              << "    <Time Value=\"" << shown.times[k] << "\"/>\n"
+              << "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"" << n
+              << "\" NodesPerElement=\"1\">\n     <DataItem Dimensions=\"" << n
+              << "\" NumberType=\"Int\" Precision=\"8\" Format=\"HDF\">" << root
+              << "/connectivity</DataItem>\n    </Topology>\n";
+            for (const std::string& e : shown.elements) {
+                // XDMF's element types: what each H5MD element holds.
+                const bool vec = e == "position" || e == "velocity" || e == "image";
+                const bool quat = e == "orientation";
+                const bool int4 = e == "species" || e == "image";
+                const std::string dims = n + (vec ? " 3" : quat ? " 4" : "");
+                const std::string item = "     <DataItem Dimensions=\"" + dims + "\" NumberType=\"" +
+                                         (int4 || e == "id" ? "Int" : "Float") + "\" Precision=\"" +
+                                         (int4 ? "4" : "8") + "\" Format=\"HDF\">" + root + "/frames/" + e +
+                                         "/" + frame + "</DataItem>\n";
+                if (e == "position") {
+                    x << "    <Geometry GeometryType=\"XYZ\">\n" << item << "    </Geometry>\n";
+                } else {
+                    x << "    <Attribute Name=\"" << e << "\" AttributeType=\""
+                      << (vec ? "Vector" : quat ? "Matrix" : "Scalar") << "\" Center=\"Node\">\n"
+                      << item << "    </Attribute>\n";
+                }
+            }
+            x << "   </Grid>\n";
+        }
+        x << "  </Grid>\n </Domain>\n</Xdmf>\n";
+        write_atomically(sidecar_ + (shown.name == "all" ? "" : "." + shown.name) + ".xmf", x.str());
     }
 }
 

@@ -28,7 +28,10 @@ struct H5mdMetadata {
 /// An H5MD file: /h5md (version, author, creator), /parameters (every resolved parameter,
 /// build version and commit, rank count), /particles/all/{box, position, ...} and
 /// /observables/<name>. Frames are stored in particle-id order whatever the rank count, since
-/// particles are first sent to the rank that writes their id block.
+/// particles are first sent to the rank that writes their id block. Beside it, STEM.xmf (XDMF,
+/// rewritten after each frame) shows the particles, and STEM.bodies.xmf the rigid bodies, as a
+/// time series of points with their elements as arrays: it points at per-frame views /particles/<group>/frames/<element>/
+/// <frame> and at /particles/<group>/connectivity, the form every ParaView XDMF reader opens.
 class H5mdWriter {
 public:
     H5mdWriter(const std::string& path, MPI_Comm comm, const H5mdMetadata& meta);
@@ -59,8 +62,20 @@ private:
     void write_group(const std::string& key, const ParticleStore& store, long long n_global,
                      const std::vector<std::string>& elements, long long step, double time);
 
+    void write_sidecar() const;
+
+    /// A particle group as the sidecar shows it.
+    struct Shown {
+        std::string name;  ///< "all" or "bodies"
+        long long n_global = 0;
+        std::vector<std::string> elements;
+        std::vector<double> times;  ///< of the frames written
+    };
+
     MPI_Comm comm_;
     H5mdMetadata meta_;
+    std::string file_name_, sidecar_;  ///< the file's name; its path less the extension
+    std::map<std::string, Shown> groups_;
     H5Id file_, particles_, observables_;
     std::map<std::string, std::unique_ptr<TimeSeries>> series_;
 };

@@ -20,7 +20,7 @@ std::vector<std::string> parse_elements(const std::string& scene, const std::str
         if (item.empty()) continue;
         if (std::find(known.begin(), known.end(), item) == known.end())
             throw InputError(scene + ": output.elements has unknown element '" + item +
-                             "' (known: position, velocity, species, id, image)");
+                             "' (known: position, velocity, species, id, image, diameter)");
         items.push_back(item);
     }
     return items;

@@ -23,6 +23,9 @@ public:
                 MPI_Comm comm);
 
     hsize_t frames() const { return frames_; }
+    /// The `value` dataset and its element type (for views of single frames).
+    hid_t value() const { return value_; }
+    hid_t type() const { return type_; }
 
 private:
     void extend(hid_t set, hsize_t frames);
