@@ -53,6 +53,11 @@ public:
     virtual Measures analyse_fields(const FieldGrid& /*grid*/, const FieldFrame& /*frame*/) {
         return {};
     }
+    /// Per-body values the scene adds to each trajectory frame of its rigid bodies (e.g. which
+    /// cluster a body is in), written as /particles/bodies/<name> and shown in the bodies' XDMF
+    /// sidecar: one value per body this rank owns, in the order of sim.bodies(). The same names
+    /// at every frame. Collective; called only when the run writes output.
+    virtual Measures body_frame_values(Simulation& /*sim*/) { return {}; }
     /// The scene's own running state (accumulated averages, the last frame's tallies) that a
     /// checkpoint keeps, as named arrays; the same on every rank. restore_state() gets them back
     /// on a continued run, after build().

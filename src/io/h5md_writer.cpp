@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstring>
 #include <sstream>
+#include <stdexcept>
 
 #include "emergent/build_info.hpp"
 #include "emergent/error.hpp"
@@ -88,7 +89,8 @@ void H5mdWriter::add_group(const std::string& name, const std::string& key, long
 }
 
 void H5mdWriter::write_group(const std::string& key, const ParticleStore& store, long long n_global,
-                             const std::vector<std::string>& elements, long long step, double time) {
+                             const std::vector<std::string>& elements, long long step, double time,
+                             const Measures& extra) {
     const IdOrder order(comm_, store.id.data(), store.n_owned(), n_global);
     auto write = [&](const std::string& name, const void* field, std::size_t bytes) {
         const std::vector<char> rows = order.gather(field, bytes);
@@ -111,10 +113,23 @@ void H5mdWriter::write_group(const std::string& key, const ParticleStore& store,
             write(e, store.has_diameters() ? store.diameter.data() : ones.data(), sizeof(Real));
         }
     }
+    Shown& shown = groups_.at(key);
+    for (const auto& [name, values] : extra) {
+        if (values.size() != store.n_owned())
+            throw std::logic_error("trajectory: per-body values '" + name + "' do not match the bodies");
+        if (!series_.count(key + name)) {  // a new element at its first frame
+            H5Id group = open_group(particles_, shown.name);
+            series_[key + name] = std::make_unique<TimeSeries>(group, name, H5T_NATIVE_DOUBLE,
+                                                               std::vector<hsize_t>{static_cast<hsize_t>(n_global)});
+            H5Id frames = open_group(group, "frames");
+            create_group(frames, name);
+            shown.elements.push_back(name);
+        }
+        write(name, values.data(), sizeof(double));
+    }
     // What a viewer reads: each element's frame as a dataset of its own (a view, no copy), and
     // once the particles' connectivity (0..N-1), which ParaView's XDMF3 readers need to show
     // points. Then the sidecar names them all.
-    Shown& shown = groups_.at(key);
     const std::string root = "/particles/" + shown.name;
     if (shown.times.empty()) {
         std::vector<std::int64_t> ids(order.count());
@@ -124,7 +139,7 @@ void H5mdWriter::write_group(const std::string& key, const ParticleStore& store,
     }
     const hsize_t k = shown.times.size();
     H5Id frames = open_group(particles_, shown.name + "/frames");
-    for (const std::string& e : elements) {
+    for (const std::string& e : shown.elements) {
         const TimeSeries& series = *series_.at(key + e);
         H5Id group = open_group(frames, e);
         add_frame_view(group, frame_name(k), series.value(), root + "/" + e + "/value", k, series.type());
@@ -188,9 +203,9 @@ void H5mdWriter::write_particles(const ParticleStore& store, long long step, dou
     H5Fflush(file_, H5F_SCOPE_GLOBAL);
 }
 
-void H5mdWriter::write_bodies(const ParticleStore& bodies, long long step, double time) {
+void H5mdWriter::write_bodies(const ParticleStore& bodies, long long step, double time, const Measures& extra) {
     write_group("b/", bodies, meta_.n_bodies,
-                {"position", "velocity", "orientation", "image", "species", "id"}, step, time);
+                {"position", "velocity", "orientation", "image", "species", "id"}, step, time, extra);
 }
 
 void H5mdWriter::write_observable(const std::string& name, long long step, double time,

@@ -12,6 +12,7 @@
 #include "emergent/box.hpp"
 #include "emergent/config.hpp"
 #include "emergent/particle_store.hpp"
+#include "emergent/problem.hpp"
 #include "io/time_series.hpp"
 
 namespace emergent::io {
@@ -40,8 +41,10 @@ public:
     /// Appends one frame of every configured element. Collective.
     void write_particles(const ParticleStore& store, long long step, double time);
 
-    /// Appends one frame of the rigid bodies (centre of mass, velocity, orientation, ...).
-    void write_bodies(const ParticleStore& bodies, long long step, double time);
+    /// Appends one frame of the rigid bodies (centre of mass, velocity, orientation, ...) and
+    /// of `extra` per-body values (one per owned body, store order; float64), each named array
+    /// becoming an element of its own at its first frame.
+    void write_bodies(const ParticleStore& bodies, long long step, double time, const Measures& extra = {});
 
     /// Appends one value (scalar if size 1, else a vector) to /observables/<name>. Collective:
     /// every rank calls it with the same arguments; rank 0 writes.
@@ -60,7 +63,8 @@ private:
     void add_group(const std::string& name, const std::string& key, long long n_global,
                    const std::vector<std::string>& elements);
     void write_group(const std::string& key, const ParticleStore& store, long long n_global,
-                     const std::vector<std::string>& elements, long long step, double time);
+                     const std::vector<std::string>& elements, long long step, double time,
+                     const Measures& extra = {});
 
     void write_sidecar() const;
 

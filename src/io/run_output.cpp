@@ -105,8 +105,14 @@ void RunOutput::on_step(Simulation& sim) {
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
     trajectory_->write_particles(std::as_const(sim).particles(), step, sim.time());
-    if (sim.has_bodies()) trajectory_->write_bodies(sim.bodies(), step, sim.time());
+    if (sim.has_bodies()) write_bodies(sim);
     last_frame_ = step;
+}
+
+void RunOutput::write_bodies(Simulation& sim) {
+    // The scene's values first: they may sync the bodies, whose arrays are then read once.
+    const Measures extra = scene_ ? scene_->body_frame_values(sim) : Measures{};
+    trajectory_->write_bodies(sim.bodies(), sim.step_index(), sim.time(), extra);
 }
 
 void RunOutput::restore_fields(const CheckpointHeader& checkpoint, int rank) {
@@ -120,7 +126,7 @@ void RunOutput::finish(Simulation& sim) {
     if (!trajectory_) return;
     if (sim.step_index() != last_frame_) {
         trajectory_->write_particles(std::as_const(sim).particles(), sim.step_index(), sim.time());
-        if (sim.has_bodies()) trajectory_->write_bodies(sim.bodies(), sim.step_index(), sim.time());
+        if (sim.has_bodies()) write_bodies(sim);
     }
     trajectory_->finish();
     trajectory_.reset();

@@ -43,6 +43,9 @@ public:
     void restore_fields(const CheckpointHeader& checkpoint, int rank);
 
 private:
+    /// A frame of the rigid bodies, with the scene's per-body values.
+    void write_bodies(Simulation& sim);
+
     std::unique_ptr<H5mdWriter> trajectory_;
     long long every_ = 0, last_frame_ = -1;
     // Coarse-grained fields: accumulated on every rank, written by rank 0.
