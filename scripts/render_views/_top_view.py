@@ -1,8 +1,8 @@
 """Shared by the views (scripts/render_views/*.py): the box of a run, a flat-shaded white view,
 an orthographic camera looking down z with the box filling the image, and the frame loop."""
 import h5py
-from paraview.simple import (GetActiveViewOrCreate, Render, SaveScreenshot,
-                             _DisableFirstRenderCameraReset)
+from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction, Render,
+                             SaveScreenshot, _DisableFirstRenderCameraReset)
 
 
 def box(run, group):
@@ -30,6 +30,15 @@ def flat_points(shown, size):
     shown.SetRepresentationType("Points")
     shown.PointSize = size
     shown.Ambient, shown.Diffuse, shown.Specular = 1.0, 0.0, 0.0
+
+
+def colour_by_value(shown, array, colours):
+    """Colours points by the integer values of a point array, value -> (r, g, b), exactly."""
+    ColorBy(shown, ("POINTS", array))
+    lut = GetColorTransferFunction(array)
+    lut.InterpretValuesAsCategories = 1
+    lut.Annotations = sum(([str(v), str(v)] for v in colours), [])
+    lut.IndexedColors = sum((list(colours[v]) for v in colours), [])
 
 
 def render_frames(view, reader, lo, hi, prefix, which, width, height):

@@ -6,10 +6,10 @@ usage: pvbatch capsid.py RUN_DIR OUT_PREFIX all|last WIDTH HEIGHT"""
 import os
 import sys
 
-from paraview.simple import ColorBy, GetColorTransferFunction, Show, Threshold, Xdmf3ReaderT
+from paraview.simple import Show, Threshold, Xdmf3ReaderT
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _top_view import box, flat_points, flat_view, render_frames  # noqa: E402
+from _top_view import box, colour_by_value, flat_points, flat_view, render_frames  # noqa: E402
 
 SHELL_RGB, PARTIAL_RGB = (0.10, 0.20, 0.60), (1.00, 0.75, 0.50)
 
@@ -25,10 +25,6 @@ except AttributeError:
 view = flat_view(width, height)
 shown = Show(clusters, view)
 flat_points(shown, 10)
-ColorBy(shown, ("POINTS", "cluster_size"))
-lut = GetColorTransferFunction("cluster_size")
-lut.InterpretValuesAsCategories = 1
-lut.Annotations = sum(([str(n), str(n)] for n in range(2, 61)), [])
-lut.IndexedColors = sum((list(SHELL_RGB if n == 60 else PARTIAL_RGB) for n in range(2, 61)), [])
+colour_by_value(shown, "cluster_size", {n: SHELL_RGB if n == 60 else PARTIAL_RGB for n in range(2, 61)})
 n = render_frames(view, reader, lo, hi, prefix, which, width, height)
 print(f"{n} image(s) of {run}")

@@ -6,10 +6,10 @@ import os
 import sys
 
 import h5py
-from paraview.simple import ColorBy, GetColorTransferFunction, Show, Xdmf3ReaderT
+from paraview.simple import Show, Xdmf3ReaderT
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _top_view import box, flat_points, flat_view, render_frames  # noqa: E402
+from _top_view import box, colour_by_value, flat_points, flat_view, render_frames  # noqa: E402
 
 SPECIES_RGB = [(0.85, 0.15, 0.10), (0.10, 0.35, 0.85), (0.95, 0.75, 0.10), (0.20, 0.70, 0.25),
                (0.55, 0.25, 0.70), (0.05, 0.75, 0.75)]
@@ -22,10 +22,6 @@ reader = Xdmf3ReaderT(FileName=[f"{run}/trajectory.xmf"])
 view = flat_view(width, height)
 shown = Show(reader, view)
 flat_points(shown, 6)
-ColorBy(shown, ("POINTS", "species"))
-lut = GetColorTransferFunction("species")
-lut.InterpretValuesAsCategories = 1
-lut.Annotations = sum(([str(k), str(k)] for k in range(n_species)), [])
-lut.IndexedColors = sum((list(SPECIES_RGB[k % len(SPECIES_RGB)]) for k in range(n_species)), [])
+colour_by_value(shown, "species", {k: SPECIES_RGB[k % len(SPECIES_RGB)] for k in range(n_species)})
 n = render_frames(view, reader, lo, hi, prefix, which, width, height)
 print(f"{n} image(s) of {run}")

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 #include <stdexcept>
 
@@ -22,9 +23,8 @@ const std::vector<std::string>& H5mdWriter::known_elements() {
 H5mdWriter::H5mdWriter(const std::string& path, MPI_Comm comm, const H5mdMetadata& meta)
     : comm_(comm), meta_(meta) {
     // The XDMF sidecar sits beside the file: DIR/STEM.h5 -> DIR/STEM.xmf.
-    const std::size_t slash = path.find_last_of('/');
-    file_name_ = slash == std::string::npos ? path : path.substr(slash + 1);
-    sidecar_ = path.substr(0, path.size() - (file_name_.size() - file_name_.find_last_of('.')));
+    file_name_ = std::filesystem::path(path).filename().string();
+    sidecar_ = std::filesystem::path(path).replace_extension().string();
     int n_ranks = 1;
     MPI_Comm_size(comm, &n_ranks);
     file_ = create_file(path, comm);
