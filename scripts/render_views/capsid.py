@@ -9,7 +9,7 @@ import sys
 from paraview.simple import Show, Threshold, Xdmf3ReaderT
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _top_view import box, colour_by_value, flat_points, flat_view, render_frames  # noqa: E402
+from _common import box, colour_by_value, flat_points, flat_view, render_frames, top_camera  # noqa: E402
 
 SHELL_RGB, PARTIAL_RGB = (0.10, 0.20, 0.60), (1.00, 0.75, 0.50)
 
@@ -26,5 +26,6 @@ view = flat_view(width, height)
 shown = Show(clusters, view)
 flat_points(shown, 10)
 colour_by_value(shown, "cluster_size", {n: SHELL_RGB if n == 60 else PARTIAL_RGB for n in range(2, 61)})
-n = render_frames(view, reader, lo, hi, prefix, which, width, height)
+top_camera(view, lo, hi, width, height)
+n = render_frames(view, reader, prefix, which, width, height, extra={"point_size": 10})
 print(f"{n} image(s) of {run}")

@@ -9,10 +9,7 @@ import h5py
 from paraview.simple import Show, Xdmf3ReaderT
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _top_view import box, colour_by_value, flat_points, flat_view, render_frames  # noqa: E402
-
-SPECIES_RGB = [(0.85, 0.15, 0.10), (0.10, 0.35, 0.85), (0.95, 0.75, 0.10), (0.20, 0.70, 0.25),
-               (0.55, 0.25, 0.70), (0.05, 0.75, 0.75)]
+from _common import SPECIES_RGB, box, colour_by_value, flat_points, flat_view, render_frames, top_camera  # noqa: E402
 
 run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
 lo, hi = box(run, "all")
@@ -23,5 +20,6 @@ view = flat_view(width, height)
 shown = Show(reader, view)
 flat_points(shown, 6)
 colour_by_value(shown, "species", {k: SPECIES_RGB[k % len(SPECIES_RGB)] for k in range(n_species)})
-n = render_frames(view, reader, lo, hi, prefix, which, width, height)
+top_camera(view, lo, hi, width, height)
+n = render_frames(view, reader, prefix, which, width, height, extra={"point_size": 6})
 print(f"{n} image(s) of {run}")

@@ -1,0 +1,57 @@
+"""Shared by the convection views: rayleigh-benard's flow as stream lines of the coarse-grained
+velocity (the run's `fields.grid` box grid, cell averages interpolated to the grid's nodes),
+started from 200 points spread through the layer, coloured by the local temperature (blue cold,
+yellow, red hot over the frame's range of cell temperatures), flat-shaded, orthographic. The
+stream lines' points and temperatures are saved beside each image (PREFIX.lines.csv)."""
+import os
+import sys
+
+import h5py
+import numpy as np
+from paraview.simple import CellDatatoPointData, Render, SaveData, SaveScreenshot, Show, StreamTracer, Xdmf3ReaderT
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from _common import THERMAL, colour_by_range, flat, flat_view, set_camera, write_camera  # noqa: E402
+
+DIRECTIONS = {"above": ((0, 0, -1), (0, 1, 0)), "below": ((0, 0, 1), (0, 1, 0)),
+              "oblique": ((-0.6, -1.0, -0.8), (0, 0, 1))}
+LINE_WIDTH = 3
+
+
+def draw(side):
+    run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
+    with h5py.File(f"{run}/fields.h5", "r") as f:
+        g = f["fields/box"]
+        lo, hi = np.array(g.attrs["lo"], float), np.array(g.attrs["hi"], float)
+        temperature = g["temperature/value"][:]
+    reader = Xdmf3ReaderT(FileName=[f"{run}/fields.xmf"])
+    nodes = CellDatatoPointData(Input=reader)
+    lines = StreamTracer(Input=nodes, SeedType="Point Cloud")
+    lines.Vectors = ["POINTS", "velocity"]
+    lines.SeedType.Center = list((lo + hi) / 2)
+    lines.SeedType.Radius = 0.49 * float(np.min(hi - lo))
+    lines.SeedType.NumberOfPoints = 200
+    lines.MaximumStreamlineLength = float(4 * np.linalg.norm(hi - lo))
+    lines.IntegrationStepUnit = "Cell Length"
+    lines.InitialStepLength = 0.1
+    lines.MaximumStepLength = 0.1
+    view = flat_view(width, height)
+    shown = Show(lines, view)
+    shown.LineWidth = LINE_WIDTH
+    flat(shown)
+    direction, up = DIRECTIONS[side]
+    set_camera(view, lo, hi, width, height, direction, up)
+    times = list(reader.TimestepValues) or [0.0]
+    frames = range(len(times)) if which == "all" else [len(times) - 1]
+    for k, frame in enumerate(frames):
+        t_lo, t_hi = float(temperature[frame].min()), float(temperature[frame].max())
+        colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))
+        view.ViewTime = times[frame]
+        Render(view)
+        name = f"{prefix}{k:06d}" if which == "all" else prefix
+        SaveScreenshot(f"{name}.png", view, ImageResolution=[width, height])
+        write_camera(view, f"{name}.camera.json", width, height,
+                     {"line_width": LINE_WIDTH, "temperature_range": [t_lo, t_hi]})
+        if which != "all":
+            SaveData(f"{name}.lines.csv", proxy=lines, PointDataArrays=["temperature"])
+    print(f"{len(frames)} image(s) of {run}")
