@@ -92,14 +92,17 @@ Schema run_schema() {
         .integer("output.every", 0, 0, 1e12, "steps",
                  "steps between particle frames in trajectory.h5 (0: first and last frame only)")
         .text("output.elements", "position,velocity,species,id,image,diameter",
-              "particle elements written per frame (comma-separated)");
+              "particle elements written per frame (comma-separated)")
+        .real("output.snapshot_seconds", 10, 0, 1e300, "seconds",
+              "wall seconds between rewrites of DIR/snapshot.h5, the latest fields and measures "
+              "for scripts/watch (0: never)");
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})
         .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "neighbour_list",
                      "equilibration_steps", "steps", "sample_every", "seed", "grid",
                      "progress_interval", "checkpoint_every", "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
                      "guard.max_overlap", "guard.max_energy_drift", "output.every",
-                     "output.elements"});
+                     "output.elements", "output.snapshot_seconds"});
     return s;
 }
 

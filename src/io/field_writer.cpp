@@ -58,6 +58,54 @@ std::string dims_text(const std::vector<hsize_t>& d) {
 }
 }  // namespace
 
+void write_grid_attributes(hid_t group, const FieldGrid& g) {
+    const bool cyl = g.kind == FieldGrid::Kind::Cylindrical;
+    write_attribute(group, "kind", std::string(cyl ? "cylindrical" : "cartesian"));
+    write_attribute(group, "shape", std::vector<int>{g.n.x, g.n.y, g.n.z});
+    write_attribute(group, "axis_names",
+                    cyl ? std::vector<std::string>{"r", "theta", "s"}
+                        : std::vector<std::string>{"x", "y", "z"});
+    // Velocity components follow the grid's axes: (v_r, v_theta, v_s) on cylindrical grids.
+    write_attribute(group, "velocity_components",
+                    cyl ? std::vector<std::string>{"r", "theta", "s"}
+                        : std::vector<std::string>{"x", "y", "z"});
+    const double lo[3] = {g.lo.x, g.lo.y, g.lo.z}, hi[3] = {g.hi.x, g.hi.y, g.hi.z};
+    const hsize_t three = 3;
+    H5Id vec(H5Screate_simple(1, &three, nullptr));
+    for (auto [name, data] : {std::pair<const char*, const double*>{"lo", lo}, {"hi", hi}}) {
+        H5Id a(H5Acreate2(group, name, H5T_NATIVE_DOUBLE, vec, H5P_DEFAULT, H5P_DEFAULT));
+        H5Awrite(a, H5T_NATIVE_DOUBLE, data);
+    }
+    if (cyl) {
+        write_attribute(group, "axis", static_cast<long long>(g.axis));
+        write_attribute(group, "r_min", g.r_min);
+        write_attribute(group, "r_max", g.r_max);
+        write_attribute(group, "theta_min", g.theta_min);
+        write_attribute(group, "theta_max", g.theta_max);
+        // Node coordinates for a curvilinear mesh in ParaView: [n_s+1][n_theta+1][n_r+1][3].
+        std::vector<double> nodes;
+        const int a = g.axis, b = (a + 1) % 3, c = (a + 2) % 3;
+        for (int is = 0; is <= g.n.z; ++is)
+            for (int it = 0; it <= g.n.y; ++it)
+                for (int ir = 0; ir <= g.n.x; ++ir) {
+                    const double r = g.r_min + (g.r_max - g.r_min) * ir / g.n.x;
+                    const double t = g.theta_min + (g.theta_max - g.theta_min) * it / g.n.y;
+                    double p[3];
+                    p[a] = g.lo[a] + (g.hi[a] - g.lo[a]) * is / g.n.z;
+                    p[b] = g.lo[b] + r * std::cos(t);
+                    p[c] = g.lo[c] + r * std::sin(t);
+                    nodes.insert(nodes.end(), {p[0], p[1], p[2]});
+                }
+        const hsize_t nd[4] = {static_cast<hsize_t>(g.n.z + 1), static_cast<hsize_t>(g.n.y + 1),
+                               static_cast<hsize_t>(g.n.x + 1), 3};
+        H5Id space(H5Screate_simple(4, nd, nullptr));
+        H5Id set(H5Dcreate2(group, "nodes", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
+                            H5P_DEFAULT));
+        h5_check(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, nodes.data()),
+                 "grid nodes");
+    }
+}
+
 FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
                          const std::vector<FieldGrid>& grids)
     : dir_(dir), stem_(stem), grids_(grids), frames_(grids.size()) {
@@ -67,51 +115,7 @@ FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
     H5Id fields = create_group(file_, "fields");
     for (const FieldGrid& g : grids) {
         H5Id group = create_group(fields, g.name);
-        const bool cyl = g.kind == FieldGrid::Kind::Cylindrical;
-        write_attribute(group, "kind", std::string(cyl ? "cylindrical" : "cartesian"));
-        write_attribute(group, "shape", std::vector<int>{g.n.x, g.n.y, g.n.z});
-        write_attribute(group, "axis_names",
-                        cyl ? std::vector<std::string>{"r", "theta", "s"}
-                            : std::vector<std::string>{"x", "y", "z"});
-        // Velocity components follow the grid's axes: (v_r, v_theta, v_s) on cylindrical grids.
-        write_attribute(group, "velocity_components",
-                        cyl ? std::vector<std::string>{"r", "theta", "s"}
-                            : std::vector<std::string>{"x", "y", "z"});
-        const double lo[3] = {g.lo.x, g.lo.y, g.lo.z}, hi[3] = {g.hi.x, g.hi.y, g.hi.z};
-        const hsize_t three = 3;
-        H5Id vec(H5Screate_simple(1, &three, nullptr));
-        for (auto [name, data] : {std::pair<const char*, const double*>{"lo", lo}, {"hi", hi}}) {
-            H5Id a(H5Acreate2(group, name, H5T_NATIVE_DOUBLE, vec, H5P_DEFAULT, H5P_DEFAULT));
-            H5Awrite(a, H5T_NATIVE_DOUBLE, data);
-        }
-        if (cyl) {
-            write_attribute(group, "axis", static_cast<long long>(g.axis));
-            write_attribute(group, "r_min", g.r_min);
-            write_attribute(group, "r_max", g.r_max);
-            write_attribute(group, "theta_min", g.theta_min);
-            write_attribute(group, "theta_max", g.theta_max);
-            // Node coordinates for a curvilinear mesh in ParaView: [n_s+1][n_theta+1][n_r+1][3].
-            std::vector<double> nodes;
-            const int a = g.axis, b = (a + 1) % 3, c = (a + 2) % 3;
-            for (int is = 0; is <= g.n.z; ++is)
-                for (int it = 0; it <= g.n.y; ++it)
-                    for (int ir = 0; ir <= g.n.x; ++ir) {
-                        const double r = g.r_min + (g.r_max - g.r_min) * ir / g.n.x;
-                        const double t = g.theta_min + (g.theta_max - g.theta_min) * it / g.n.y;
-                        double p[3];
-                        p[a] = g.lo[a] + (g.hi[a] - g.lo[a]) * is / g.n.z;
-                        p[b] = g.lo[b] + r * std::cos(t);
-                        p[c] = g.lo[c] + r * std::sin(t);
-                        nodes.insert(nodes.end(), {p[0], p[1], p[2]});
-                    }
-            const hsize_t nd[4] = {static_cast<hsize_t>(g.n.z + 1), static_cast<hsize_t>(g.n.y + 1),
-                                   static_cast<hsize_t>(g.n.x + 1), 3};
-            H5Id space(H5Screate_simple(4, nd, nullptr));
-            H5Id set(H5Dcreate2(group, "nodes", H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT,
-                                H5P_DEFAULT));
-            h5_check(H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, nodes.data()),
-                     "grid nodes");
-        }
+        write_grid_attributes(group, g);
         for (const char* q : kQuantities) {
             H5Id qg = create_group(group, q);
             extendible(qg, "step", H5T_NATIVE_LLONG, {});

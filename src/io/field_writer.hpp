@@ -11,6 +11,10 @@
 
 namespace emergent::io {
 
+/// The grid's description as attributes of `group` (kind, shape, axis names, velocity components,
+/// lo/hi; cylindrical grids add axis, r and theta ranges and a `nodes` dataset of their corners).
+void write_grid_attributes(hid_t group, const FieldGrid& g);
+
 /// Writes frames of coarse-grained fields. Fields are reduced to rank 0 before writing, so
 /// this writer is used by rank 0 alone (serial HDF5 driver): a few kilobytes per frame.
 ///

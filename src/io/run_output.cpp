@@ -54,6 +54,9 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
         if (sim.rank() == 0)
             field_writer_ = std::make_unique<FieldWriter>(dir, "fields" + suffix, grids);
     }
+    if (sim.rank() == 0)
+        snapshot_ = std::make_unique<WatchSnapshot>(dir, config.scene(), grids,
+                                                    config.real("output.snapshot_seconds"));
     H5mdMetadata meta;
     meta.config = &config;
     meta.box = sim.box();
@@ -80,6 +83,13 @@ void RunOutput::on_sample(const ThermoSample& t, const Measures& scene_measures)
     if (t.max_overlap >= 0) trajectory_->write_observable("max_overlap", t.step, t.time, {t.max_overlap});
     // A killed run keeps its series up to the last sample (particle frames may be rare).
     trajectory_->flush();
+    if (snapshot_) {
+        snapshot_->on_measures(t.step, t.time, scene_measures);
+        snapshot_->on_measures(t.step, t.time,
+                               {{"temperature", {t.temperature}}, {"total_energy", {t.total}},
+                                {"pressure", {t.pressure}}});
+        snapshot_->maybe_write(t.step, t.time);
+    }
 }
 
 void RunOutput::on_step(Simulation& sim) {
@@ -96,11 +106,16 @@ void RunOutput::on_step(Simulation& sim) {
         for (std::size_t g = 0; g < fields_.size(); ++g) {
             const FieldFrame frame = fields_[g].take(sim.comm());
             if (field_writer_) field_writer_->write(g, step, sim.time(), frame);
-            if (scene_ && g > 0)  // grid 0 is the run's box grid, the others the scene's
-                for (const auto& [name, value] : scene_->analyse_fields(fields_[g].grid(), frame))
+            if (snapshot_) snapshot_->on_fields(g, frame);
+            if (scene_ && g > 0) {  // grid 0 is the run's box grid, the others the scene's
+                const Measures found = scene_->analyse_fields(fields_[g].grid(), frame);
+                for (const auto& [name, value] : found)
                     trajectory_->write_observable(name, step, sim.time(), value);
+                if (snapshot_) snapshot_->on_measures(step, sim.time(), found);
+            }
         }
         trajectory_->flush();
+        if (snapshot_) snapshot_->maybe_write(step, sim.time());
     }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
@@ -130,6 +145,7 @@ void RunOutput::finish(Simulation& sim) {
     }
     trajectory_->finish();
     trajectory_.reset();
+    if (snapshot_) snapshot_->maybe_write(sim.step_index(), sim.time(), true);
 }
 
 }  // namespace emergent::io

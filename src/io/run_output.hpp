@@ -11,13 +11,15 @@
 #include "io/checkpoint.hpp"
 #include "io/field_writer.hpp"
 #include "io/h5md_writer.hpp"
+#include "io/watch_snapshot.hpp"
 #include "observe/field_accumulator.hpp"
 
 namespace emergent::io {
 
 /// Writes DIR/trajectory.h5 (H5MD): particle frames every `output.every` steps (0: first and
 /// last only) and the thermodynamic observables at every sample; and, when `fields.interval`
-/// > 0, coarse-grained fields averaged over each interval into DIR/fields.h5 + fields.xmf.
+/// > 0, coarse-grained fields averaged over each interval into DIR/fields.h5 + fields.xmf; and,
+/// every `output.snapshot_seconds` of wall time, DIR/snapshot.h5 for watching (WatchSnapshot).
 /// Inactive (and costs nothing) when dir is empty.
 class RunOutput {
 public:
@@ -54,6 +56,7 @@ private:
     long long field_interval_ = 0, field_sample_every_ = 1, last_field_step_ = -1;
     bool first_step_seen_ = false;
     Problem* scene_ = nullptr;
+    std::unique_ptr<WatchSnapshot> snapshot_;  // rank 0 only
 };
 
 /// Splits "a,b,c" into its items (spaces ignored); throws InputError for unknown items.
