@@ -3,11 +3,12 @@ colour maps a check can recompute exactly, cameras, and the frame loop. Every sa
 PREFIX.camera.json beside it with the camera's world-to-screen matrix, so a check (and a user)
 can find where any point of the run lands in the picture."""
 import json
+import os
 
 import h5py
 import numpy as np
 from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetColorTransferFunction,
-                             GetOpacityTransferFunction, Render, SaveScreenshot,
+                             GetOpacityTransferFunction, Render, SaveScreenshot, SaveState,
                              _DisableFirstRenderCameraReset)
 
 # One categorical palette for species and cluster kinds, and the diverging map of signed values
@@ -146,6 +147,8 @@ def render_frames(view, reader, prefix, which, width, height, times=None, extra=
     """Saves the last frame as PREFIX.png or every frame as PREFIXNNNNNN.png, each with its
     .camera.json (with `extra`, e.g. the point size). `which` = last | all."""
     times = times if times is not None else (list(reader.TimestepValues) or [0.0])
+    if save_state(view, times):
+        return 0
     chosen = times if which == "all" else times[-1:]
     for k, t in enumerate(chosen):
         view.ViewTime = t
@@ -154,6 +157,17 @@ def render_frames(view, reader, prefix, which, width, height, times=None, extra=
         SaveScreenshot(f"{name}.png", view, ImageResolution=[width, height])
         write_camera(view, f"{name}.camera.json", width, height, extra)
     return len(chosen)
+
+
+def save_state(view, times):
+    """With EMERGENT_SAVE_STATE=PATH (scripts/replay), saves the pipeline as a ParaView state
+    file at the last time instead of rendering; returns whether it did."""
+    path = os.environ.get("EMERGENT_SAVE_STATE")
+    if not path:
+        return False
+    view.ViewTime = times[-1]
+    SaveState(path)
+    return True
 
 
 def top_camera(view, lo, hi, width, height):

@@ -8,10 +8,11 @@ import sys
 
 import h5py
 import numpy as np
-from paraview.simple import CellDatatoPointData, Render, SaveData, SaveScreenshot, Show, StreamTracer, Xdmf3ReaderT
+from paraview.simple import (CellDatatoPointData, ExtractBlock, MergeBlocks, Render, SaveData, SaveScreenshot,
+                             Show, StreamTracer, Xdmf3ReaderT)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _common import THERMAL, colour_by_range, flat, flat_view, set_camera, write_camera  # noqa: E402
+from _common import THERMAL, colour_by_range, flat, flat_view, save_state, set_camera, write_camera  # noqa: E402
 
 DIRECTIONS = {"above": ((0, 0, -1), (0, 1, 0)), "below": ((0, 0, 1), (0, 1, 0)),
               "oblique": ((-0.6, -1.0, -0.8), (0, 0, 1))}
@@ -25,7 +26,11 @@ def draw(side):
         lo, hi = np.array(g.attrs["lo"], float), np.array(g.attrs["hi"], float)
         temperature = g["temperature/value"][:]
     reader = Xdmf3ReaderT(FileName=[f"{run}/fields.xmf"])
-    nodes = CellDatatoPointData(Input=reader)
+    # The reader gives every grid of fields.xmf as one block each; the scene's own grids (the
+    # convection scene's slice and profile) overlap the box grid, always the first block.
+    box_grid = ExtractBlock(Input=reader)
+    box_grid.Selectors = ["/Root/Block0"]
+    nodes = CellDatatoPointData(Input=MergeBlocks(Input=box_grid))
     lines = StreamTracer(Input=nodes, SeedType="Point Cloud")
     lines.Vectors = ["POINTS", "velocity"]
     lines.SeedType.Center = list((lo + hi) / 2)
@@ -43,6 +48,11 @@ def draw(side):
     set_camera(view, lo, hi, width, height, direction, up)
     times = list(reader.TimestepValues) or [0.0]
     frames = range(len(times)) if which == "all" else [len(times) - 1]
+    if os.environ.get("EMERGENT_SAVE_STATE"):
+        t_lo, t_hi = float(temperature[-1].min()), float(temperature[-1].max())
+        colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))
+        save_state(view, times)
+        return
     for k, frame in enumerate(frames):
         t_lo, t_hi = float(temperature[frame].min()), float(temperature[frame].max())
         colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))

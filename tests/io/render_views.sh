@@ -20,8 +20,9 @@ dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
 check=$root/tests/support/render_check.py
 run() { "$exe" run "$@" --set progress_interval=0 >/dev/null; }
-render_and_check() {  # RUN VIEW SIZE
-  "$root/scripts/render" "$dir/$1" --view "$2" --size "$3" >/dev/null
+render_and_check() {  # RUN VIEW SIZE; pvbatch's own lines on failure
+  "$root/scripts/render" "$dir/$1" --view "$2" --size "$3" >/dev/null ||
+    { grep -v '^ *[0-9]* *0x' "$dir/$1/render/$2.log" | tail -n 20; exit 1; }
   /usr/bin/python3 "$check" "$dir/$1" "$dir/$1/render/$2.png" "$2"
 }
 # A drum long enough for a cut-away worth checking (two species).
@@ -48,6 +49,29 @@ render_and_check shell capsid_early 500x500
 n=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$dir/drum/render/particles.mp4")
 [ "$n" = 11 ] || { echo "FAIL: the movie has $n frames, the run 11"; exit 1; }
 echo "ok: a movie of 11 frames"
+# scripts/replay: the state file of each scene's default view opens the run in ParaView
+# (tests/support/state_check.py, under pvbatch: times, points, what is shown).
+state_check() {  # RUN VIEW; one more try as in scripts/render (xvfb-run -a's display pick)
+  local state
+  state=$("$root/scripts/replay" "$dir/$1" --state-only)
+  [ "$state" = "$(cd "$dir/$1" && pwd)/render/$2.pvsm" ] || { echo "FAIL: replay wrote '$state'"; exit 1; }
+  xvfb-run -a -n $((100 + RANDOM % 5000)) pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" 2>&1 | tail -n 1 | grep '^ok' ||
+    { sleep 2; xvfb-run -a -n $((100 + RANDOM % 5000)) pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" 2>&1 | tail -n 1 | grep '^ok'; } ||
+    { echo "FAIL: the state of $1 ($2) does not open the run"; exit 1; }
+}
+state_check drum cutaway
+state_check rb convection_oblique
+state_check tc quadrant
+state_check shell capsid
+rc=0
+err=$(env -u DISPLAY "$root/scripts/replay" "$dir/drum" 2>&1 >/dev/null) || rc=$?
+[ $rc = 2 ] && [[ "$err" == *"no display"* ]] || { echo "FAIL: replay without a display: status $rc, $err"; exit 1; }
+for bad in "$dir/none" "$dir/tc --view rolls" "$dir/tc --view cutaway" "$dir/tc --bogus"; do
+  rc=0
+  err=$("$root/scripts/replay" $bad --state-only 2>&1 >/dev/null) || rc=$?
+  [ $rc = 2 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: scripts/replay $bad: status $rc, $err"; exit 1; }
+done
+echo "ok: replay states open their runs; bad input refused in one line"
 run rotating-drum --preset tiny -o "$dir/short"
 run rayleigh-benard --preset tiny -o "$dir/rb_slab"
 for bad in "$dir/none" "$dir/short --movie" "$dir/drum --view capsid" "$dir/drum --view nosuch" \
