@@ -2,7 +2,9 @@
 // Cartesian rank grid.
 #include "rank_grid.hpp"
 
+#include <algorithm>
 #include <limits>
+#include <stdexcept>
 #include <sstream>
 
 #include "emergent/error.hpp"
@@ -67,11 +69,23 @@ RankGrid::RankGrid(MPI_Comm comm, const Box& global, Int3 dims, const bool split
     coords_ = {c[0], c[1], c[2]};
     const Vec3 len = global.length();
     for (int d = 0; d < 3; ++d) {
-        lo_[d] = global.lo[d] + len[d] * coords_[d] / dims_[d];
-        hi_[d] = coords_[d] + 1 == dims_[d] ? global.hi[d]
-                                            : global.lo[d] + len[d] * (coords_[d] + 1) / dims_[d];
+        cuts_[d].resize(static_cast<std::size_t>(dims_[d]) + 1);
+        for (int k = 0; k < dims_[d]; ++k) cuts_[d][k] = global.lo[d] + len[d] * k / dims_[d];
+        cuts_[d][dims_[d]] = global.hi[d];
+        lo_[d] = cuts_[d][coords_[d]];
+        hi_[d] = cuts_[d][coords_[d] + 1];
         MPI_Cart_shift(cart_, d, 1, &neighbour_[d][0], &neighbour_[d][1]);
     }
+}
+
+void RankGrid::set_cuts(int d, const std::vector<double>& planes) {
+    bool fits = planes.size() == cuts_[d].size() && planes.front() == global_.lo[d] &&
+                planes.back() == global_.hi[d];
+    for (std::size_t k = 1; fits && k < planes.size(); ++k) fits = planes[k] > planes[k - 1];
+    if (!fits) throw std::logic_error("RankGrid::set_cuts: planes do not partition the axis");
+    cuts_[d] = planes;
+    lo_[d] = cuts_[d][coords_[d]];
+    hi_[d] = cuts_[d][coords_[d] + 1];
 }
 
 RankGrid::~RankGrid() {
@@ -87,14 +101,10 @@ bool RankGrid::wraps(int d, int side) const {
 
 int RankGrid::rank_of(const Vec3& x) const {
     int c[3];
-    const Vec3 len = global_.length();
     for (int d = 0; d < 3; ++d) {
-        c[d] = static_cast<int>((x[d] - global_.lo[d]) / len[d] * dims_[d]);
-        c[d] = c[d] < 0 ? 0 : (c[d] >= dims_[d] ? dims_[d] - 1 : c[d]);
-        // Domain bounds are computed like lo_/hi_ above, so the two always agree.
-        while (c[d] > 0 && x[d] < global_.lo[d] + len[d] * c[d] / dims_[d]) --c[d];
-        while (c[d] + 1 < dims_[d] && x[d] >= global_.lo[d] + len[d] * (c[d] + 1) / dims_[d])
-            ++c[d];
+        // The domain [cuts k, cuts k+1) holding x: the same planes lo_/hi_ are, so the two agree.
+        const auto inner_begin = cuts_[d].begin() + 1, inner_end = cuts_[d].end() - 1;
+        c[d] = static_cast<int>(std::upper_bound(inner_begin, inner_end, x[d]) - inner_begin);
     }
     int rank = 0;
     MPI_Cart_rank(cart_, c, &rank);
@@ -102,13 +112,13 @@ int RankGrid::rank_of(const Vec3& x) const {
 }
 
 void RankGrid::require_width(double ghost_width) const {
-    const Vec3 len = global_.length();
     for (int d = 0; d < 3; ++d) {
-        const double width = len[d] / dims_[d];
+        double width = global_.length()[d];
+        for (int k = 0; k < dims_[d]; ++k) width = std::min(width, cuts_[d][k + 1] - cuts_[d][k]);
         if (width < ghost_width) {
             std::ostringstream msg;
             msg << "domain too thin: axis " << "xyz"[d] << " is split into " << dims_[d]
-                << " domains of width " << width << ", less than the ghost shell "
+                << " domains, the thinnest of width " << width << ", less than the ghost shell "
                 << ghost_width << " (cutoff + skin); use fewer ranks or a larger system";
             throw InputError(msg.str());
         }

@@ -56,6 +56,18 @@ enum class ListLayout {
     Full,
 };
 
+/// How the planes cutting the box into rank domains are placed (run parameter `balance`).
+enum class LoadBalance {
+    /// Equal slabs along each split axis, for the whole run.
+    None,
+    /// Planes moved so that every slab of ranks holds an equal share of the work, counted as
+    /// neighbour-list entries plus a fixed share per particle (decomposition/load_balance.hpp):
+    /// at initialise and at every `balance_every`-th step (0: at initialise only). The cost is
+    /// an integer count, so a run is as reproducible as with None, and the planes are kept in
+    /// snapshots and checkpoints, so a continuation on the same rank count stays exact.
+    Cost,
+};
+
 struct RunSettings {
     double dt = 0.005;
     double skin = 0.3;
@@ -65,6 +77,15 @@ struct RunSettings {
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
     Backend backend = Backend::Host;
     ListLayout list_layout = ListLayout::Auto;
+    LoadBalance balance = LoadBalance::None;
+    long long balance_every = 0;  ///< steps between rebalances with LoadBalance::Cost; 0: start only
+};
+
+/// What load balancing did so far (Simulation::load_balance()), the same on every rank.
+struct LoadBalanceStats {
+    long long rebalances = 0;      ///< times the planes were placed (initialise included)
+    double imbalance_first = 1;    ///< max/mean rank cost before the first placement
+    double imbalance_last = 1;     ///< max/mean rank cost before the latest placement
 };
 
 /// Bounds of the run-time guards; 0 switches a bound off.
@@ -82,6 +103,7 @@ struct StateSnapshot {
     ParticleStore owned;
     std::vector<Vec3> reference;  ///< empty: the positions themselves
     ParticleStore bodies;  ///< rigid bodies owned here (empty without bodies)
+    std::vector<double> domain_cuts;  ///< Simulation::domain_cuts() at the snapshot
     long long step = 0, rebuilds = 0;
     double time = 0;
 };
@@ -220,6 +242,17 @@ public:
     const std::vector<Vec3>& list_reference_positions() const;
     /// Rank whose domain holds x (after set_box).
     int rank_of(const Vec3& x) const;
+    /// The planes cutting the box into rank domains: dims.x + 1 along x (from box lo to hi),
+    /// then dims.y + 1 along y, dims.z + 1 along z (see rank_grid_dims()).
+    std::vector<double> domain_cuts() const;
+    /// Places the planes as domain_cuts() returned them on the same rank grid, before
+    /// restore() or initialise(); InputError where they do not fit this grid and box.
+    void set_domain_cuts(const std::vector<double>& planes);
+    /// Rebalances so far and the cost imbalance they found (LoadBalance::Cost).
+    const LoadBalanceStats& load_balance() const;
+    /// Max over ranks of the ranks' work / the mean (1: perfect), counted as LoadBalance::Cost
+    /// counts it, from the list last built. Collective.
+    double cost_imbalance() const;
     /// Continues a saved run instead of initialise(): `owned` holds this rank's particles,
     /// `reference` their positions at the last list build (each particle must lie, at its
     /// reference position, in this rank's domain). The list is rebuilt exactly as it was built

@@ -77,9 +77,13 @@ public:
         box.lo = {-radius_ - margin, -radius_ - margin, -margin};
         box.hi = {radius_ + margin, radius_ + margin, length_ + margin};
         box.periodic[0] = box.periodic[1] = box.periodic[2] = false;
-        // The bed lies in the lower part of every cross-section: only the axis is split, so
-        // every rank gets a slice of the bed.
-        const bool split[3] = {false, false, true};
+        // The bed lies in the lower part of every cross-section: with equal slabs only the
+        // axis is split, so every rank gets a slice of the bed. With balance=cost the planes
+        // follow the bed and x (across it, left of the tilted surface from right) may be split
+        // too; not y as well, since planes shared by a whole axis cannot cut a tilted bed into
+        // four equal quadrants.
+        const bool across = c_.text("balance") == "cost";
+        const bool split[3] = {across, false, true};
         sim.set_box(box, split);
         sim.set_species_masses({c_.real("sphere_mass"), c_.real("sphere_mass")});
 

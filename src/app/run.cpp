@@ -100,6 +100,8 @@ RunSettings run_settings(const Config& cfg) {
     settings.list_layout = layout == "full"   ? ListLayout::Full
                            : layout == "half" ? ListLayout::Half
                                               : ListLayout::Auto;
+    settings.balance = cfg.text("balance") == "cost" ? LoadBalance::Cost : LoadBalance::None;
+    settings.balance_every = cfg.integer("balance.every");
     return settings;
 }
 

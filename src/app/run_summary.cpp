@@ -93,6 +93,13 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     // the ranks' mean, time the others spend waiting at the next exchange.
     const double compute = p.force + p.integrate;
     field("seconds_imbalance", number(decomp::max(comm, compute) - decomp::sum(comm, compute) / sim.n_ranks()));
+    // Work per rank as load balance counts it (list entries + a share per particle), now and
+    // before the first and latest rebalance (balance=cost).
+    const LoadBalanceStats& balance = sim.load_balance();
+    field("cost_imbalance", number(sim.cost_imbalance()));
+    field("rebalances", std::to_string(balance.rebalances));
+    field("cost_imbalance_first", number(balance.imbalance_first));
+    field("cost_imbalance_last", number(balance.imbalance_last));
     // Point-to-point traffic of the measured phase, summed over ranks (Simulation::message_traffic).
     const MessageTraffic traffic = sim.message_traffic();
     auto put_traffic = [&](const char* purpose, const MessageCounts& c) {

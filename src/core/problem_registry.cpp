@@ -71,6 +71,12 @@ Schema run_schema() {
                  "steps between samples of energy, temperature and pressure")
         .integer("seed", 12345, 0, 9.2e18, "1", "random seed (initial state, thermostat)")
         .text("grid", "auto", "rank grid as NXxNYxNZ (e.g. 2x1x1); auto minimises the ghost volume")
+        .choice("balance", "none", {"none", "cost"},
+                "where the planes between rank domains lie: none (equal slabs), cost (moved so that "
+                "each slab of ranks holds an equal share of the neighbour-list entries plus 2 per "
+                "particle, at the start and every balance.every steps; kept in checkpoints)")
+        .integer("balance.every", 1000, 0, 1e12, "steps",
+                 "steps between rebalances with balance=cost (0: at the start only)")
         .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
         .integer("checkpoint_every", 0, 0, 1e12, "steps",
                  "steps between checkpoints DIR/checkpoint.h5 (0: none; needs -o DIR)")
@@ -99,7 +105,7 @@ Schema run_schema() {
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})
         .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "neighbour_list",
-                     "equilibration_steps", "steps", "sample_every", "seed", "grid",
+                     "equilibration_steps", "steps", "sample_every", "seed", "grid", "balance", "balance.every",
                      "progress_interval", "checkpoint_every", "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
                      "guard.max_overlap", "guard.max_energy_drift", "output.every",
                      "output.elements", "output.snapshot_seconds"});

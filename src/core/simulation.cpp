@@ -10,6 +10,7 @@
 
 #include "decomposition/exact_sum.hpp"
 #include "decomposition/halo_exchange.hpp"
+#include "decomposition/load_balance.hpp"
 #include "decomposition/migration.hpp"
 #include "decomposition/rank_grid.hpp"
 #include "decomposition/reductions.hpp"
@@ -68,6 +69,9 @@ struct Simulation::Engine {
     unsigned particle_fields = kPosition;  ///< what the force terms read of owned particles
     long long n_global = 0, step = 0, rebuilds = 0;
     bool moved_since_build = true;  ///< a drift since the last list build
+    bool balance_due = false;       ///< the planes move at this step's next drift
+    LoadBalanceStats balance_stats;
+    mutable std::vector<std::uint32_t> cost_scratch, offset_copy;
     double time = 0;
     PhaseTimes times;
     std::vector<std::uint32_t> order;
@@ -365,6 +369,42 @@ struct Simulation::Engine {
         check_count();
     }
 
+    /// Each owned particle's work (decomp::kParticleCost): its entries in the list last built,
+    /// wherever that list lives, plus the fixed share.
+    const std::vector<std::uint32_t>& particle_costs() const {
+        const std::size_t n = store.n_owned();
+        const std::uint32_t* offset = list.offsets();
+        if (built_on_backend) {
+            offset_copy.resize(n + 1);
+            mirror->copy_to_host(offset_copy.data(), backend_build.offsets(), (n + 1) * sizeof(std::uint32_t));
+            offset = offset_copy.data();
+        } else if (list.n_owned() != n) {
+            throw std::logic_error("particle_costs: the list does not match the particles");
+        }
+        cost_scratch.resize(n);
+        for (std::size_t i = 0; i < n; ++i) cost_scratch[i] = offset[i + 1] - offset[i] + decomp::kParticleCost;
+        return cost_scratch;
+    }
+
+    /// Moves the planes between domains to equal shares of the work (LoadBalance::Cost); where
+    /// they moved (returns true) a build must follow, which takes the particles to their new
+    /// owners. Collective.
+    bool rebalance() {
+        PhaseTimer timer(times.neighbour);
+        host_reads(kPosition);
+        const std::vector<std::uint32_t>& cost = particle_costs();
+        // Particles may be up to about half the skin outside their domain when a build is due:
+        // planes stay a skin inside the neighbouring domains, so one migration pass suffices.
+        const decomp::BalanceReport report = decomp::balance_cuts(
+            *grid, store.position.data(), cost.data(), store.n_owned(), ghost_width(), settings.skin);
+        if (balance_stats.rebalances == 0) balance_stats.imbalance_first = report.imbalance_before;
+        balance_stats.imbalance_last = report.imbalance_before;
+        ++balance_stats.rebalances;
+        if (report.axes_moved == 0) return false;
+        cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff(), settings.cell_subdivisions);
+        return true;
+    }
+
     /// After a build: no particle was lost or made on the way. Collective.
     void check_count() const {
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
@@ -481,6 +521,10 @@ struct Simulation::Engine {
                 // Contact forces with damping or friction need their partners' velocities.
                 if (ghost_fields & kVelocity) halo.gather_velocities(store);
             }
+        }
+        if (balance_due) {
+            balance_due = false;
+            if (rebalance()) needed = true;
         }
         if (needed) rebuild(true);
     }
@@ -740,6 +784,7 @@ void Simulation::initialise() {
     }
     e.place_body_frames();
     e.rebuild();
+    if (e.settings.balance == LoadBalance::Cost && e.rebalance()) e.rebuild();
     e.count_bodies();
     e.compute_forces(true, e.time);
 }
@@ -800,6 +845,7 @@ void Simulation::snapshot(StateSnapshot& snap) const {
         e.bodies_to_host(Engine::kBodyFields);
         snap.bodies = e.rigid.bodies();
     }
+    snap.domain_cuts = domain_cuts();
     snap.step = e.step;
     snap.time = e.time;
     snap.rebuilds = e.rebuilds;
@@ -811,6 +857,7 @@ void Simulation::restore(const StateSnapshot& snapshot) {
     copy.resize_owned(copy.n_owned());  // the arrays the snapshot left empty, at their fill values
     std::vector<Vec3> reference = snapshot.reference.empty() ? copy.position : snapshot.reference;
     ParticleStore bodies = snapshot.bodies;
+    if (!snapshot.domain_cuts.empty()) set_domain_cuts(snapshot.domain_cuts);
     restore(std::move(copy), std::move(reference), snapshot.step, snapshot.time,
             snapshot.rebuilds, engine_->bodies() ? &bodies : nullptr, saved_forces);
 }
@@ -851,6 +898,43 @@ const std::vector<Vec3>& Simulation::list_reference_positions() const {
 int Simulation::rank_of(const Vec3& x) const {
     engine_->require_grid("rank_of");
     return engine_->grid->rank_of(x);
+}
+
+std::vector<double> Simulation::domain_cuts() const {
+    engine_->require_grid("domain_cuts");
+    std::vector<double> planes;
+    for (int d = 0; d < 3; ++d)
+        planes.insert(planes.end(), engine_->grid->cuts(d).begin(), engine_->grid->cuts(d).end());
+    return planes;
+}
+
+void Simulation::set_domain_cuts(const std::vector<double>& planes) {
+    Engine& e = *engine_;
+    e.require_grid("set_domain_cuts");
+    const Int3 dims = e.grid->dims();
+    if (planes.size() != static_cast<std::size_t>(dims.x + dims.y + dims.z + 3))
+        throw InputError("domain cuts: " + std::to_string(planes.size()) + " planes do not fit a " +
+                         std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +
+                         std::to_string(dims.z) + " rank grid");
+    std::size_t at = 0;
+    for (int d = 0; d < 3; ++d) {
+        const std::vector<double> axis(planes.begin() + at, planes.begin() + at + dims[d] + 1);
+        at += axis.size();
+        bool fits = axis.front() == e.box.lo[d] && axis.back() == e.box.hi[d];
+        for (std::size_t k = 1; fits && k < axis.size(); ++k) fits = axis[k] > axis[k - 1];
+        if (!fits)
+            throw InputError(std::string("domain cuts: the planes along ") + "xyz"[d] +
+                             " do not cut this box in increasing order");
+        e.grid->set_cuts(d, axis);
+    }
+}
+
+const LoadBalanceStats& Simulation::load_balance() const { return engine_->balance_stats; }
+
+double Simulation::cost_imbalance() const {
+    const Engine& e = *engine_;
+    const std::vector<std::uint32_t>& cost = e.particle_costs();
+    return decomp::cost_imbalance(e.comm, cost.data(), cost.size());
 }
 
 void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
@@ -928,6 +1012,10 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
 void Simulation::step(bool sample) {
     Engine& e = *engine_;
     const double dt = e.settings.dt;
+    // Rebalances by the step's index alone, so a continued run moves the planes where the
+    // uninterrupted one did.
+    const long long every = e.settings.balance_every;
+    e.balance_due = e.settings.balance == LoadBalance::Cost && every > 0 && (e.step + 1) % every == 0;
     switch (e.settings.integrator) {
     case Integrator::VelocityVerlet:
         e.kick_drift(0.5 * dt, dt, e.time);

@@ -73,6 +73,13 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
                             comm);
         const std::vector<double> box = box_record(sim.box());
         write_small_dataset(root, "box", H5T_NATIVE_DOUBLE, {box.size()}, box.data(), comm);
+        // The planes between domains (moved by load balance): a continuation on the same grid
+        // places them where they were.
+        const Int3 dims = sim.rank_grid_dims();
+        const std::vector<double> grid{double(dims.x), double(dims.y), double(dims.z)};
+        write_small_dataset(root, "domain_grid", H5T_NATIVE_DOUBLE, {grid.size()}, grid.data(), comm);
+        const std::vector<double> cuts = sim.domain_cuts();
+        write_small_dataset(root, "domain_cuts", H5T_NATIVE_DOUBLE, {cuts.size()}, cuts.data(), comm);
         const std::vector<double> tallies = sim.exchange_tallies();
         write_small_dataset(root, "exchange_tallies", H5T_NATIVE_DOUBLE, {tallies.size()},
                             tallies.data(), comm);
@@ -170,6 +177,10 @@ CheckpointHeader read_header(const std::string& path, MPI_Comm comm) {
         }
     }
     if (exists(root, "box")) h.box = read_doubles(root, "box");
+    if (exists(root, "domain_grid")) {
+        h.domain_grid = read_doubles(root, "domain_grid");
+        h.domain_cuts = read_doubles(root, "domain_cuts");
+    }
     if (exists(root, "exchange_tallies")) h.exchange_tallies = read_doubles(root, "exchange_tallies");
     const std::vector<double> rows = read_doubles(root, "series");
     for (std::size_t k = 0; k < rows.size() / kSeriesColumns; ++k) {
@@ -207,6 +218,11 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     if (!h.box.empty() && h.box != box_record(sim.box()))
         throw InputError("'" + path + "': the scene's box differs from the checkpoint's (was it "
                          "written by another version of the scene?)");
+    // On the grid that wrote it, the domains are the checkpoint's; on another, equal slabs
+    // (load balance, if on, moves them at its next step).
+    const Int3 dims = sim.rank_grid_dims();
+    if (h.domain_grid == std::vector<double>{double(dims.x), double(dims.y), double(dims.z)})
+        sim.set_domain_cuts(h.domain_cuts);
     const decomp::IdBlocks blocks{h.n_global, n_ranks};
     const long long first = blocks.first(rank);
     const auto count = static_cast<std::size_t>(blocks.first(rank + 1) - first);

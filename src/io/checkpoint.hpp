@@ -21,6 +21,8 @@ struct CheckpointHeader {
     double time = 0;
     int ranks = 0;                              ///< rank count that wrote it
     std::vector<double> box;                    ///< lo, hi, periodic flags, wedge (empty: not kept)
+    std::vector<double> domain_grid;            ///< ranks per axis that wrote it (empty: not kept)
+    std::vector<double> domain_cuts;            ///< Simulation::domain_cuts() at the save
     std::vector<ThermoSample> series;           ///< samples of the measured phase so far
     /// Field intervals in progress: grid name -> (global sums, samples).
     std::map<std::string, std::pair<std::vector<double>, long long>> fields;

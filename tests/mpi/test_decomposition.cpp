@@ -6,6 +6,8 @@
 
 #include <algorithm>
 
+#include "decomposition/rank_grid.hpp"
+#include "emergent/random.hpp"
 #include "support/scene_fixture.hpp"
 
 using namespace emergent;
@@ -81,4 +83,52 @@ TEST(Decomposition, NoParticleLostUnderLargeUniformDrift) {
     // And the drift itself is carried intact: momentum per particle stays (7, 5, 3).
     EXPECT_NEAR(end.momentum.x / end.n, 7.0, 1e-9);
     EXPECT_NEAR(end.momentum.z / end.n, 3.0, 1e-9);
+}
+
+TEST(Decomposition, MovedDomainPlanesTileTheBox) {
+    // Planes placed unevenly (as load balance places them) on whatever grid this rank count
+    // gets: every point of the box belongs to exactly one domain, the one rank_of names.
+    Box box;
+    box.hi = {12, 9, 7};
+    decomp::RankGrid grid(MPI_COMM_WORLD, box);
+    for (int d = 0; d < 3; ++d) {
+        std::vector<double> planes = grid.cuts(d);
+        const int n = grid.dims()[d];
+        // Domain k gets a width proportional to k + 1.
+        const double unit = box.hi[d] / (n * (n + 1) / 2.0);
+        for (int k = 1; k < n; ++k) planes[k] = unit * k * (k + 1) / 2.0;
+        grid.set_cuts(d, planes);
+        EXPECT_DOUBLE_EQ(grid.lo()[d], planes[grid.coords()[d]]);
+        EXPECT_DOUBLE_EQ(grid.hi()[d], planes[grid.coords()[d] + 1]);
+    }
+    int wrong = 0, owners_bad = 0;
+    for (std::uint64_t k = 0; k < 2000; ++k) {
+        // The same points on every rank: drawn from (seed, point, axis).
+        const Vec3 x{12 * uniform_open(7, k, 0), 9 * uniform_open(7, k, 1), 7 * uniform_open(7, k, 2)};
+        const bool mine = x.x >= grid.lo().x && x.x < grid.hi().x && x.y >= grid.lo().y &&
+                          x.y < grid.hi().y && x.z >= grid.lo().z && x.z < grid.hi().z;
+        if (mine != (grid.rank_of(x) == grid.rank())) ++wrong;
+        int owners = mine;
+        MPI_Allreduce(MPI_IN_PLACE, &owners, 1, MPI_INT, MPI_SUM, MPI_COMM_WORLD);
+        owners_bad += owners != 1;
+    }
+    EXPECT_EQ(wrong, 0);
+    EXPECT_EQ(owners_bad, 0);
+    // Planes out of order are refused.
+    if (grid.dims().x > 1) {
+        std::vector<double> bad = grid.cuts(0);
+        bad[1] = 13;
+        EXPECT_THROW(grid.set_cuts(0, bad), std::logic_error);
+    }
+}
+
+TEST(Decomposition, BalancedRunIndependentOfRankCount) {
+    // Planes moved every 20 steps by the cost of each slab (here a fluid: small moves, but a
+    // migration to new owners each time) change only the order of sums.
+    expect_same_thermodynamics({"n_cells=6", "thermostat=none", "balance=cost", "balance.every=20"});
+    auto sim = make_scene(MPI_COMM_WORLD, "lj-fluid",
+                          {"n_cells=6", "thermostat=none", "balance=cost", "balance.every=20"});
+    for (int k = 0; k < 100; ++k) sim->step(false);
+    EXPECT_EQ(sim->load_balance().rebalances, 6);  // at the start and at steps 20, 40, ..., 100
+    EXPECT_GE(sim->cost_imbalance(), 1.0);
 }
