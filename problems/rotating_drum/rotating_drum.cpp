@@ -79,10 +79,14 @@ public:
         box.periodic[0] = box.periodic[1] = box.periodic[2] = false;
         // The bed lies in the lower part of every cross-section: with equal slabs only the
         // axis is split, so every rank gets a slice of the bed. With balance=cost the planes
-        // follow the bed and x (across it, left of the tilted surface from right) may be split
-        // too; not y as well, since planes shared by a whole axis cannot cut a tilted bed into
-        // four equal quadrants.
-        const bool across = c_.text("balance") == "cost";
+        // follow the bed, and where slices of the axis alone would be thinner than about two
+        // ghost shells (4 body sizes), x is split too (across the bed, the tilted surface's
+        // left from its right; measured slower than axial slices where those suffice,
+        // benchmarks/RESULTS.md). Never y as well: planes shared by a whole axis cannot cut a
+        // tilted bed into four equal quadrants.
+        int ranks = 1;
+        MPI_Comm_size(sim.comm(), &ranks);
+        const bool across = c_.text("balance") == "cost" && length_ / ranks < 4 * (c_.real("arm_big") + d_);
         const bool split[3] = {across, false, true};
         sim.set_box(box, split);
         sim.set_species_masses({c_.real("sphere_mass"), c_.real("sphere_mass")});
