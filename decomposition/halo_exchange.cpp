@@ -2,7 +2,9 @@
 // Ghost exchange plan.
 #include "halo_exchange.hpp"
 
+#include <algorithm>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include "field_packing.hpp"
@@ -14,6 +16,8 @@ namespace emergent::decomp {
 namespace {
 constexpr int kCountTag = 7101;
 constexpr int kDataTag = 7102;
+constexpr int kRefreshTag = 7300;  // + 2 swap + field: staged refreshes
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 void HaloExchange::exchange(const Swap& swap, const void* send, std::size_t send_bytes,
@@ -23,6 +27,100 @@ void HaloExchange::exchange(const Swap& swap, const void* send, std::size_t send
         return;
     }
     send_receive(send, send_bytes, swap.send_rank, recv, recv_bytes, swap.recv_rank, tag, comm_, tally);
+}
+
+std::size_t HaloExchange::stage_end(std::size_t first) const {
+    // Ghosts are appended swap after swap: a swap depends on the stage if it exports an index
+    // at or beyond the stage's first import.
+    const std::size_t imports_from = swaps_.at(first).import_first;
+    std::size_t k = first + 1;
+    for (; k < swaps_.size(); ++k) {
+        const std::vector<int>& e = swaps_[k].export_index;
+        if (!e.empty() && static_cast<std::size_t>(*std::max_element(e.begin(), e.end())) >= imports_from) break;
+    }
+    return k;
+}
+
+std::size_t HaloExchange::refresh_stages() const {
+    std::size_t stages = 0;
+    for (std::size_t k = 0; k < swaps_.size(); k = stage_end(k)) ++stages;
+    return std::max<std::size_t>(stages, 1);
+}
+
+void HaloExchange::begin_refresh(ParticleStore& store, bool velocities) {
+    if (exports_elsewhere_)
+        throw std::logic_error("HaloExchange: this plan's export lists live on the back end");
+    if (staged_position_) throw std::logic_error("HaloExchange::begin_refresh: a refresh is in flight");
+    staged_position_ = &store.position;
+    staged_velocity_ = velocities ? &store.velocity : nullptr;
+    next_swap_ = 0;
+    stage_send_.resize(2 * swaps_.size());
+    post_stage();
+}
+
+void HaloExchange::post_stage() {
+    requests_.clear();
+    if (next_swap_ >= swaps_.size()) return;
+    const std::size_t end = stage_end(next_swap_);
+    for (std::size_t k = next_swap_; k < end; ++k) {
+        const Swap& swap = swaps_[k];
+        for (int field = 0; field < 2; ++field) {
+            std::vector<Vec3>* values = field == 0 ? staged_position_ : staged_velocity_;
+            if (!values) continue;
+            std::vector<Vec3>& out = stage_send_[2 * k + field];
+            const std::size_t n = swap.export_index.size();
+            out.resize(n);
+            const GhostImage image{values->data(), swap.export_index.data(), out.data(), wedge_, swap.turns,
+                                   field == 0 ? swap.shift : Vec3{0, 0, 0}};
+            for (std::size_t i = 0; i < n; ++i) image(i);
+            Vec3* into = values->data() + swap.import_first;
+            if (swap.to_self) {
+                if (n) std::memcpy(into, out.data(), n * sizeof(Vec3));
+                continue;
+            }
+            // A tag per swap and field: the two faces of an axis may have the same neighbour.
+            const int tag = kRefreshTag + static_cast<int>(2 * k) + field;
+            // Poisoned until the message lands: a ghost read too early is NaN (its pair is
+            // dropped or its force is NaN), never the last step's value, so a missing wait
+            // changes the result on every run (tests/mpi/halo_overlap.sh) whatever the timing.
+            std::fill(into, into + swap.import_count, Vec3{kNaN, kNaN, kNaN});
+            requests_.emplace_back();
+            MPI_Irecv(into, static_cast<int>(swap.import_count * sizeof(Vec3)), MPI_BYTE, swap.recv_rank, tag,
+                      comm_, &requests_.back());
+            requests_.emplace_back();
+            MPI_Isend(out.data(), static_cast<int>(n * sizeof(Vec3)), MPI_BYTE, swap.send_rank, tag, comm_,
+                      &requests_.back());
+            if (swap.send_rank != MPI_PROC_NULL) {
+                ++refresh_traffic_.messages;
+                refresh_traffic_.bytes += static_cast<long long>(n * sizeof(Vec3));
+            }
+        }
+    }
+    next_swap_ = end;
+}
+
+void HaloExchange::wait_stage() {
+    if (requests_.empty()) return;
+    const double start = MPI_Wtime();
+    MPI_Waitall(static_cast<int>(requests_.size()), requests_.data(), MPI_STATUSES_IGNORE);
+    wait_seconds_ += MPI_Wtime() - start;
+    requests_.clear();
+}
+
+void HaloExchange::advance_refresh() {
+    if (!staged_position_) return;
+    wait_stage();
+    post_stage();
+}
+
+void HaloExchange::end_refresh() {
+    if (!staged_position_) return;
+    wait_stage();
+    while (next_swap_ < swaps_.size()) {
+        post_stage();
+        wait_stage();
+    }
+    staged_position_ = staged_velocity_ = nullptr;
 }
 
 void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double width,
@@ -173,8 +271,10 @@ void HaloExchange::gather(std::vector<Vec3>& field, bool is_position) {
         const GhostImage image{field.data(), swap.export_index.data(), send_vectors_.data(),
                                wedge_, swap.turns, offset};
         for (std::size_t k = 0; k < n; ++k) image(k);
+        const double start = MPI_Wtime();
         exchange(swap, send_vectors_.data(), n * sizeof(Vec3), field.data() + swap.import_first,
                  swap.import_count * sizeof(Vec3), kDataTag, refresh_traffic_);
+        if (!swap.to_self) wait_seconds_ += MPI_Wtime() - start;
     }
 }
 

@@ -34,6 +34,22 @@ public:
     /// moves) along the same plan.
     void gather_velocities(ParticleStore& store) { gather(store.velocity, false); }
 
+    /// A refresh of ghost positions (and velocities, if `velocities`) in stages, so that the
+    /// caller computes while messages are in flight: begin_refresh() starts the first stage's
+    /// swaps (the swaps that export only particles present when the stage starts: one axis's
+    /// two faces), advance_refresh() waits for the stage in flight and starts the next,
+    /// end_refresh() completes them all. Until end_refresh() the ghosts' fields are not to be
+    /// read. Sends the same messages, with the same counts, as gather_positions() and
+    /// gather_velocities().
+    void begin_refresh(ParticleStore& store, bool velocities);
+    void advance_refresh();
+    void end_refresh();
+    /// Stages of a refresh along the current plan (at least 1).
+    std::size_t refresh_stages() const;
+    /// Seconds spent waiting for ghost data in refreshes since it was made (the blocking ones:
+    /// their whole exchanges).
+    double refresh_wait_seconds() const { return wait_seconds_; }
+
     /// Number of ghosts imported by the last build.
     std::size_t n_ghost() const { return n_ghost_; }
 
@@ -87,6 +103,12 @@ private:
     void exchange(const Swap& swap, const void* send, std::size_t send_bytes, void* recv,
                   std::size_t recv_bytes, int tag, MessageCounts& tally) const;
 
+    /// The first swap after `first` that re-exports a ghost imported by a swap in
+    /// [first, that swap): where the stage starting at `first` ends.
+    std::size_t stage_end(std::size_t first) const;
+    void post_stage();
+    void wait_stage();
+
     MPI_Comm comm_ = MPI_COMM_NULL;
     Wedge wedge_;
     std::vector<Swap> swaps_;
@@ -94,6 +116,14 @@ private:
     std::vector<Vec3> send_vectors_;
     std::size_t n_ghost_ = 0;
     bool exports_elsewhere_ = false;  ///< adopt_plan(): the export lists are on the back end
+    // The staged refresh in progress: its fields, the next swap to start, the requests and
+    // per-swap send buffers of the stage in flight.
+    std::vector<Vec3>* staged_position_ = nullptr;
+    std::vector<Vec3>* staged_velocity_ = nullptr;
+    std::size_t next_swap_ = 0;
+    std::vector<MPI_Request> requests_;
+    std::vector<std::vector<Vec3>> stage_send_;
+    mutable double wait_seconds_ = 0;
     // Counted in const refreshes (exchange_bytes) too.
     mutable MessageCounts refresh_traffic_, build_traffic_;
 };

@@ -23,6 +23,11 @@ struct ForceContext {
     const std::vector<double>* mass = nullptr;  ///< per species
     Box box;
     double time = 0;
+    /// The owned particles whose rows of the half list this call covers, [first, last) (clipped
+    /// to the owned particles): the engine splits a step's pair forces into the rows that
+    /// need no ghost and the rest, computing the first while ghost positions are in flight.
+    /// Only terms whose honours_range() is true are called with less than all rows.
+    std::size_t first = 0, last = static_cast<std::size_t>(-1);
 };
 
 /// Potential energy and virial accumulated by force terms on sampling steps.
@@ -53,6 +58,11 @@ public:
     /// Adds the term's forces to store.force; when `sample`, also its energy and virial.
     virtual void add_forces(ParticleStore& store, const NeighbourList& list,
                             const ForceContext& context, bool sample, ForceSums& sums) const = 0;
+    /// True when add_forces() visits only the rows [context.first, context.last) of the half
+    /// list, in increasing order, adding nothing else (so two calls over adjacent row ranges
+    /// add, bit for bit, what one call over both does). Pair terms that say so let the engine
+    /// overlap the ghost refresh with their forces.
+    virtual bool honours_range() const { return false; }
     /// True when the term also has the back end's form below: then the engine can keep the
     /// particles on the back end through the force computation.
     virtual bool on_backend() const { return false; }

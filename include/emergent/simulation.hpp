@@ -79,6 +79,9 @@ struct RunSettings {
     ListLayout list_layout = ListLayout::Auto;
     LoadBalance balance = LoadBalance::None;
     long long balance_every = 0;  ///< steps between rebalances with LoadBalance::Cost; 0: start only
+    /// Refresh ghosts while computing the pair forces that need none (Simulation::halo_overlap()
+    /// says where it applies); the forces are bit for bit those without.
+    bool overlap_halo = true;
 };
 
 /// What load balancing did so far (Simulation::load_balance()), the same on every rank.
@@ -147,6 +150,9 @@ struct PhaseTimes {
     double force = 0;
     double integrate = 0;  ///< both half steps and the thermostat
     double communicate = 0;  ///< ghost position refresh and the rebuild check
+    /// Blocked waiting for ghost data in refreshes (inside `communicate`, or inside `force`
+    /// where the refresh overlaps the forces).
+    double halo_wait = 0;
 };
 
 /// A particle system decomposed over the ranks of a communicator.
@@ -253,6 +259,13 @@ public:
     /// Max over ranks of the ranks' work / the mean (1: perfect), counted as LoadBalance::Cost
     /// counts it, from the list last built. Collective.
     double cost_imbalance() const;
+    /// True when the ghost refresh overlaps the pair forces (RunSettings::overlap_halo, and
+    /// the run allows it: the host builds a half list, the first force term is a pair term
+    /// that honours row ranges, no rigid bodies or wedge images, more than one rank).
+    bool halo_overlap() const;
+    /// Of this rank's owned particles, the fraction whose list rows need no ghost (computed
+    /// first while ghosts are in flight), from the last build; 0 without halo_overlap().
+    double interior_fraction() const;
     /// Continues a saved run instead of initialise(): `owned` holds this rank's particles,
     /// `reference` their positions at the last list build (each particle must lie, at its
     /// reference position, in this rank's domain). The list is rebuilt exactly as it was built

@@ -102,6 +102,7 @@ RunSettings run_settings(const Config& cfg) {
                                               : ListLayout::Auto;
     settings.balance = cfg.text("balance") == "cost" ? LoadBalance::Cost : LoadBalance::None;
     settings.balance_every = cfg.integer("balance.every");
+    settings.overlap_halo = cfg.text("halo_overlap") == "on";
     return settings;
 }
 

@@ -89,6 +89,10 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     field("seconds_integrate", number(decomp::max(comm, p.integrate)));
     field("seconds_migrate", number(decomp::max(comm, p.migrate)));
     field("seconds_communicate", number(decomp::max(comm, p.communicate)));
+    // Blocked on ghost data (inside communicate, or inside force where the refresh overlaps).
+    field("seconds_halo_wait", number(decomp::max(comm, p.halo_wait)));
+    field("halo_overlap", sim.halo_overlap() ? "true" : "false");
+    field("interior_fraction", number(decomp::sum(comm, sim.interior_fraction()) / sim.n_ranks()));
     // Load imbalance: how much longer the slowest rank computed (forces and integration) than
     // the ranks' mean, time the others spend waiting at the next exchange.
     const double compute = p.force + p.integrate;

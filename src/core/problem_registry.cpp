@@ -77,6 +77,9 @@ Schema run_schema() {
                 "particle, at the start and every balance.every steps; kept in checkpoints)")
         .integer("balance.every", 1000, 0, 1e12, "steps",
                  "steps between rebalances with balance=cost (0: at the start only)")
+        .choice("halo_overlap", "on", {"on", "off"},
+                "on: the ghosts' refresh is in flight while the pair forces that need no ghost are "
+                "computed (host half list, several ranks, no bodies or wedge; the same bits as off)")
         .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
         .integer("checkpoint_every", 0, 0, 1e12, "steps",
                  "steps between checkpoints DIR/checkpoint.h5 (0: none; needs -o DIR)")
@@ -105,7 +108,7 @@ Schema run_schema() {
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})
         .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "neighbour_list",
-                     "equilibration_steps", "steps", "sample_every", "seed", "grid", "balance", "balance.every",
+                     "equilibration_steps", "steps", "sample_every", "seed", "grid", "balance", "balance.every", "halo_overlap",
                      "progress_interval", "checkpoint_every", "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
                      "guard.max_overlap", "guard.max_energy_drift", "output.every",
                      "output.elements", "output.snapshot_seconds"});

@@ -70,6 +70,14 @@ struct Simulation::Engine {
     long long n_global = 0, step = 0, rebuilds = 0;
     bool moved_since_build = true;  ///< a drift since the last list build
     bool balance_due = false;       ///< the planes move at this step's next drift
+    /// Ghost refresh overlapped with the pair forces (Simulation::halo_overlap()). Where the run
+    /// allows it, the owned particles are ordered with the n_interior whose list rows need no
+    /// ghost first, whether or not the overlap is switched on, so that on and off give the
+    /// same bits; refresh_in_flight between a drift's start of the refresh and the forces.
+    bool interior_first = false;
+    std::size_t n_interior = 0;
+    bool refresh_in_flight = false;
+    double wait_at_reset = 0;
     LoadBalanceStats balance_stats;
     mutable std::vector<std::uint32_t> cost_scratch, offset_copy;
     double time = 0;
@@ -232,7 +240,16 @@ struct Simulation::Engine {
                              "' has no back-end form yet (use half or auto)");
         full_list = layout == ListLayout::Full ||
                     (layout == ListLayout::Auto && settings.backend != Backend::Host && host_only.empty());
+        // Wedge images and bodies' spheres may lie inside a domain as ghosts: no particle is
+        // sure to be free of them, so nothing is ordered.
+        interior_first = !mirror && !full_list && !bodies() && !box.wedge.active() && !forces.empty() &&
+                         forces.front()->cutoff() > 0 && forces.front()->honours_range() && grid->size() > 1;
+        n_interior = 0;
     }
+
+    /// The same on every rank (the refresh's messages must match), even where a rank has no
+    /// interior particle.
+    bool overlap_now() const { return interior_first && settings.overlap_halo; }
 
     /// The particles and the full list as the back end's loops see them.
     BackendParticles backend_particles() {
@@ -341,6 +358,7 @@ struct Simulation::Engine {
         if (bodies()) rigid.append_constituents(store);
         // Cell order gives the force loop neighbours that sit close in memory.
         cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
+        if (interior_first) order_interior_first();
         store.permute_owned(order, kAllFields & ~kForce);  // forces are recomputed after a build
         halo.build(store, *grid, ghost_width(), ghost_fields);
         cells.bin_after_sort(store.position.data(), store.size());
@@ -353,6 +371,7 @@ struct Simulation::Engine {
             place_full_list();
         } else {
             list.build(store, cells, mixed_cells);
+            if (interior_first) check_interior();
         }
         moved_since_build = false;
         if (mirror) {
@@ -405,6 +424,34 @@ struct Simulation::Engine {
         return true;
     }
 
+    /// Puts first, in `order`, the owned particles farther than the list range from every face
+    /// that brings ghosts (a neighbour's, or the rank's own periodic images): no ghost can be
+    /// in their rows of the list. Each part keeps its cell order.
+    void order_interior_first() {
+        const Vec3 lo = grid->lo(), hi = grid->hi();
+        // The search's range, widened as its single-precision copy widens it (NeighbourList).
+        const double range = list.list_cutoff() + cells.binned_distance_error();
+        bool low[3], high[3];
+        for (int d = 0; d < 3; ++d) {
+            low[d] = grid->neighbour(d, 0) != MPI_PROC_NULL;
+            high[d] = grid->neighbour(d, 1) != MPI_PROC_NULL;
+        }
+        n_interior = cells.partition_sorted(order, [&](std::uint32_t i) {
+            const Vec3& x = store.position[i];
+            for (int d = 0; d < 3; ++d)
+                if ((low[d] && x[d] - lo[d] <= range) || (high[d] && hi[d] - x[d] <= range)) return false;
+            return true;
+        });
+    }
+
+    /// The rows of the interior particles hold no ghost (what the overlap relies on).
+    void check_interior() const {
+        const std::uint32_t *offset = list.offsets(), *nb = list.neighbours();
+        const std::size_t n_owned = store.n_owned();
+        for (std::uint32_t k = 0; k < offset[n_interior]; ++k)
+            if (nb[k] >= n_owned) throw std::logic_error("an interior particle has a ghost in its list row");
+    }
+
     /// After a build: no particle was lost or made on the way. Collective.
     void check_count() const {
         const long long n = decomp::sum(comm, static_cast<long long>(store.n_owned()));
@@ -439,7 +486,27 @@ struct Simulation::Engine {
         std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
         sums = ForceSums{};
         const ForceContext context{&mass, box, at};
-        for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
+        if (refresh_in_flight) {
+            // The first (pair) term's interior rows while the ghosts arrive, a share of them per
+            // stage of the refresh; then its other rows and every other term, in the order of
+            // the plain loop below, so each force sums the same terms in the same order.
+            ForceContext rows = context;
+            const std::size_t stages = halo.refresh_stages();
+            for (std::size_t k = 0; k < stages; ++k) {
+                rows.first = n_interior * k / stages;
+                rows.last = n_interior * (k + 1) / stages;
+                forces.front()->add_forces(store, list, rows, sample, sums);
+                halo.advance_refresh();
+            }
+            halo.end_refresh();
+            refresh_in_flight = false;
+            rows.first = n_interior;
+            rows.last = static_cast<std::size_t>(-1);
+            forces.front()->add_forces(store, list, rows, sample, sums);
+            for (std::size_t k = 1; k < forces.size(); ++k) forces[k]->add_forces(store, list, context, sample, sums);
+        } else {
+            for (const auto& term : forces) term->add_forces(store, list, context, sample, sums);
+        }
         host_wrote(kForce);
         if (bodies()) {
             // Host code summed the forces: the bodies' sums run on the host too.
@@ -494,39 +561,48 @@ struct Simulation::Engine {
 
     /// After a drift: the list is rebuilt if some particle moved beyond half the skin since
     /// the last build, otherwise the ghosts follow their owners.
-    void follow_drift() {
+    /// `defer`: the forces that follow are not sampled, so the ghosts' refresh may overlap
+    /// them (overlap_now()).
+    void follow_drift(bool defer) {
         bool needed;
-        if (mirror) {
+        {
             PhaseTimer timer(times.communicate);
-            backend_reads(kPosition);
-            Vec3* x = mirror->array<Vec3>(kPosition);
-            const double local = exec::transform_max(target, store.n_owned(), 0.0,
-                                                     SquaredDisplacement{x, reference_on_backend});
-            needed = list.rebuild_due(local, comm);
-            if (!needed) {
-                backend_halo.gather(target, halo, *mirror, x, true, kHaloPack);
-                backend_wrote(kPosition);
-                // Contact forces with damping or friction need their partners' velocities.
-                if (ghost_fields & kVelocity) {
-                    backend_reads(kVelocity);
-                    backend_halo.gather(target, halo, *mirror, mirror->array<Vec3>(kVelocity), false, kHaloPack);
-                    backend_wrote(kVelocity);
-                }
-            }
-        } else {
-            PhaseTimer timer(times.communicate);
-            needed = list.needs_rebuild(store, comm);
-            if (!needed) {
-                halo.gather_positions(store);
-                // Contact forces with damping or friction need their partners' velocities.
-                if (ghost_fields & kVelocity) halo.gather_velocities(store);
+            if (mirror) {
+                backend_reads(kPosition);
+                const double local = exec::transform_max(target, store.n_owned(), 0.0,
+                                                         SquaredDisplacement{mirror->array<Vec3>(kPosition),
+                                                                             reference_on_backend});
+                needed = list.rebuild_due(local, comm);
+            } else {
+                needed = list.needs_rebuild(store, comm);
             }
         }
         if (balance_due) {
             balance_due = false;
             if (rebalance()) needed = true;
         }
-        if (needed) rebuild(true);
+        if (needed) {
+            rebuild(true);
+            return;
+        }
+        PhaseTimer timer(times.communicate);
+        // Contact forces with damping or friction need their partners' velocities too.
+        if (mirror) {
+            Vec3* x = mirror->array<Vec3>(kPosition);
+            backend_halo.gather(target, halo, *mirror, x, true, kHaloPack);
+            backend_wrote(kPosition);
+            if (ghost_fields & kVelocity) {
+                backend_reads(kVelocity);
+                backend_halo.gather(target, halo, *mirror, mirror->array<Vec3>(kVelocity), false, kHaloPack);
+                backend_wrote(kVelocity);
+            }
+        } else if (defer && overlap_now()) {
+            halo.begin_refresh(store, (ghost_fields & kVelocity) != 0);
+            refresh_in_flight = true;
+        } else {
+            halo.gather_positions(store);
+            if (ghost_fields & kVelocity) halo.gather_velocities(store);
+        }
     }
 
     bool is_free(std::size_t i) const { return !store.has_rigid_fields() || store.body[i] < 0; }
@@ -931,6 +1007,13 @@ void Simulation::set_domain_cuts(const std::vector<double>& planes) {
 
 const LoadBalanceStats& Simulation::load_balance() const { return engine_->balance_stats; }
 
+bool Simulation::halo_overlap() const { return engine_->interior_first && engine_->settings.overlap_halo; }
+
+double Simulation::interior_fraction() const {
+    const Engine& e = *engine_;
+    return e.interior_first && e.store.n_owned() ? double(e.n_interior) / double(e.store.n_owned()) : 0.0;
+}
+
 double Simulation::cost_imbalance() const {
     const Engine& e = *engine_;
     const std::vector<std::uint32_t>& cost = e.particle_costs();
@@ -1019,7 +1102,7 @@ void Simulation::step(bool sample) {
     switch (e.settings.integrator) {
     case Integrator::VelocityVerlet:
         e.kick_drift(0.5 * dt, dt, e.time);
-        e.follow_drift();
+        e.follow_drift(!sample);
         e.compute_forces(sample, e.time + dt);
         e.kick(0.5 * dt);
         break;
@@ -1028,10 +1111,10 @@ void Simulation::step(bool sample) {
         // Comput. Phys. Commun. 146 (2002) 188, eq. 31).
         constexpr double lambda = 0.1931833275037836;
         e.kick_drift(lambda * dt, 0.5 * dt, e.time);
-        e.follow_drift();
+        e.follow_drift(true);
         e.compute_forces(false, e.time + 0.5 * dt);
         e.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt, e.time + 0.5 * dt);
-        e.follow_drift();
+        e.follow_drift(!sample);
         e.compute_forces(sample, e.time + dt);
         e.kick(lambda * dt);
         break;
@@ -1183,7 +1266,10 @@ bool Simulation::conserves_energy() const {
         if (!rule->conservative()) return false;
     return true;
 }
-const PhaseTimes& Simulation::phase_times() const { return engine_->times; }
+const PhaseTimes& Simulation::phase_times() const {
+    engine_->times.halo_wait = engine_->halo.refresh_wait_seconds() - engine_->wait_at_reset;
+    return engine_->times;
+}
 
 MessageTraffic Simulation::message_traffic() const {
     const Engine& e = *engine_;
@@ -1206,6 +1292,7 @@ MessageTraffic Simulation::message_traffic() const {
 
 void Simulation::reset_phase_times() {
     engine_->times = PhaseTimes{};
+    engine_->wait_at_reset = engine_->halo.refresh_wait_seconds();
     engine_->traffic_at_reset = MessageTraffic{};
     engine_->traffic_at_reset = message_traffic();
 }

@@ -21,8 +21,9 @@ namespace {
 /// Half-list loop over contacts; one instantiation per feature combination.
 template <class F>
 void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSettings& g,
-                  ForceSums& sums) {
+                  ForceSums& sums, const ForceContext& rows) {
     const std::size_t n_owned = list.n_owned();
+    const std::size_t last = std::min(rows.last, n_owned);
     const Vec3 *x = s.position.data(), *v = s.velocity.data();
     const Real* d = s.diameter.data();
     const int* sp = s.species.data();
@@ -32,7 +33,7 @@ void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSet
     const int n_species = g.n_species;
     const Real half_range = 0.5 * g.range_factor;
     double potential = 0, virial = 0, worst = 0;
-    for (std::size_t i = 0; i < n_owned; ++i) {
+    for (std::size_t i = rows.first; i < last; ++i) {
         const Vec3 xi = x[i], vi = v[i];
         const Real di = d[i];
         Vec3 fi{0, 0, 0};
@@ -68,10 +69,11 @@ struct ContactLoop {
     const NeighbourList& list;
     const GranularSettings& settings;
     ForceSums& sums;
+    const ForceContext& rows;
     template <bool Sample, bool Damping, bool Friction, bool Table>
     void operator()() const {
         contact_loop<force::ContactFeatures<Sample, Damping, Friction, Table>>(store, list,
-                                                                                settings, sums);
+                                                                                settings, sums, rows);
     }
 };
 
@@ -128,12 +130,13 @@ public:
         const bool velocities = damping_ || friction_ || g_.generic;
         return kPosition | kSpecies | kDiameter | (velocities ? unsigned(kVelocity) : 0u);
     }
-    void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext&,
+    void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext& rows,
                     bool sample, ForceSums& sums) const override {
         const bool all = g_.generic;
-        force::dispatch_bools(ContactLoop{store, list, g_, sums}, sample, damping_ || all,
+        force::dispatch_bools(ContactLoop{store, list, g_, sums, rows}, sample, damping_ || all,
                               friction_ || all, g_.n_species > 1 || all);
     }
+    bool honours_range() const override { return true; }
     /// The laws travel by value with the loop: up to kContactTableSpecies species.
     bool on_backend() const override { return g_.n_species <= force::kContactTableSpecies; }
     void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,

@@ -23,17 +23,18 @@ public:
         return generic_ ? kPosition | kVelocity | kSpecies : kPosition;
     }
 
-    void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext&,
+    void add_forces(ParticleStore& store, const NeighbourList& list, const ForceContext& rows,
                     bool sample, ForceSums& sums) const override {
         // The one place where the run-time flag becomes a compile-time feature.
         if (generic_)  // everything compiled in and evaluated, energy and virial every step
             force::pair_forces_half_list<force::PairFeatures<true, true, true>>(store, list, eval_,
-                                                                               sums, table_);
+                                                                               sums, rows, table_);
         else if (sample)
-            force::pair_forces_half_list<force::PairFeatures<true>>(store, list, eval_, sums);
+            force::pair_forces_half_list<force::PairFeatures<true>>(store, list, eval_, sums, rows);
         else
-            force::pair_forces_half_list<force::PairFeatures<false>>(store, list, eval_, sums);
+            force::pair_forces_half_list<force::PairFeatures<false>>(store, list, eval_, sums, rows);
     }
+    bool honours_range() const override { return true; }
 
     bool on_backend() const override { return !generic_; }
     void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,

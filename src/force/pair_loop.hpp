@@ -2,6 +2,8 @@
 // CPU loop over a half neighbour list, applying any pair evaluator.
 #pragma once
 
+#include <algorithm>
+
 #include "emergent/force_term.hpp"
 #include "neighbour/neighbour_list.hpp"
 
@@ -28,10 +30,13 @@ struct PairTable {
 /// Adds pair forces for every listed pair (Newton's third law on both members; forces landing on
 /// ghosts are discarded by the caller's next zeroing). Energy and virial of an owned–ghost pair
 /// count half here: the rank that owns the ghost counts the other half.
+/// Only the rows [first, last) of the list are visited (ForceContext).
 template <class Features, class Evaluator>
 void pair_forces_half_list(ParticleStore& store, const NeighbourList& list, const Evaluator& eval0,
-                           ForceSums& sums, const PairTable<Evaluator>& table = {}) {
+                           ForceSums& sums, const ForceContext& rows,
+                           const PairTable<Evaluator>& table = {}) {
     const std::size_t n_owned = list.n_owned();
+    const std::size_t last = std::min(rows.last, n_owned);
     const Vec3* x = store.position.data();
     const Vec3* v = store.velocity.data();
     const int* sp = store.species.data();
@@ -39,7 +44,7 @@ void pair_forces_half_list(ParticleStore& store, const NeighbourList& list, cons
     const std::uint32_t* offset = list.offsets();
     const std::uint32_t* nb = list.neighbours();
     double potential = 0, virial = 0;
-    for (std::size_t i = 0; i < n_owned; ++i) {
+    for (std::size_t i = rows.first; i < last; ++i) {
         const Vec3 xi = x[i];
         Vec3 fi{0, 0, 0};
         for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {

@@ -84,6 +84,26 @@ public:
     void sort_order(const Vec3* x, const std::int64_t* id, std::size_t n,
                     std::vector<std::uint32_t>& order);
 
+    /// After sort_order(): moves the particles for which first(old index) is true to the
+    /// front of `order`, both parts keeping their cell order (and bin_after_sort() its cells);
+    /// returns how many are in front.
+    template <class Predicate>
+    std::size_t partition_sorted(std::vector<std::uint32_t>& order, Predicate first) {
+        std::vector<std::uint32_t> front, back;
+        std::vector<std::uint32_t> front_cell, back_cell;
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            const bool in_front = first(order[k]);
+            (in_front ? front : back).push_back(order[k]);
+            (in_front ? front_cell : back_cell).push_back(sorted_cell_[k]);
+        }
+        const std::size_t n_front = front.size();
+        std::copy(front.begin(), front.end(), order.begin());
+        std::copy(back.begin(), back.end(), order.begin() + static_cast<std::ptrdiff_t>(n_front));
+        std::copy(front_cell.begin(), front_cell.end(), sorted_cell_.begin());
+        std::copy(back_cell.begin(), back_cell.end(), sorted_cell_.begin() + static_cast<std::ptrdiff_t>(n_front));
+        return n_front;
+    }
+
     /// Bins positions [0, n) into cells; members of a cell are listed in ascending index.
     void bin(const Vec3* x, std::size_t n);
     /// bin() right after sort_order(): positions [0, m) are the m particles that call ordered,

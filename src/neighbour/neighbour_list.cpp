@@ -56,19 +56,24 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
         return;
     }
     const std::size_t n_owned = store.n_owned();
-    const Vec3* x = store.position.data();
     const Int3 shape = cells.shape();
-    // Precondition (the engine sorts owned particles by cell before each build): the list is
-    // stored in order of i, and inner cells earlier than i's cell hold only smaller indices.
-    int previous = n_owned > 0 ? cells.cell_of(x[0]) : 0;
-    for (std::size_t i = 1; i < n_owned; ++i) {
-        const int c = cells.cell_of(x[i]);
-        if (c < previous)
-            throw std::logic_error("NeighbourList::build: owned particles not sorted by cell");
-        previous = c;
+    const std::uint32_t* member = cells.members();
+    // Where each owned particle sits among the cells' members. Rows are written in index
+    // order; the search itself is geometric (later inner cells, ghost cells, later slots of
+    // the own cell), so a pair is listed once whatever the order of the indices. The engine
+    // orders owned particles by cell, or by cell within two parts (interior first, for the
+    // halo overlap): consecutive rows then mostly share a cell and its ranges below.
+    place_.assign(n_owned, Place{0, -1});
+    for (int c = 0; c < cells.n_cells(); ++c) {
+        if (!cells.is_inner(c)) continue;
+        for (std::uint32_t a = cells.first(c); a < cells.first(c + 1); ++a) {
+            if (member[a] >= n_owned)
+                throw std::logic_error("NeighbourList::build: a ghost lies inside the domain; "
+                                       "this region needs the general search");
+            place_[member[a]] = Place{a, c};
+        }
     }
     offset_.assign(n_owned + 1, 0);
-    const std::uint32_t* member = cells.members();
     // The search runs on the cells' single-precision copy, its range widened by the copy's
     // rounding so that no pair in range is missed (benchmarks/RESULTS.md, "Memory").
     const BinnedPoint* xb = cells.binned_positions();
@@ -104,52 +109,53 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
         neighbour_.resize(expected + 1024);
     }
     std::size_t count = 0;
-    for (int c = 0; c < cells.n_cells(); ++c) {
-        if (!cells.is_inner(c) || cells.first(c) == cells.first(c + 1)) continue;
-        // Inner cells before c hold only owned j < i; inner cells after c and ghost cells hold
-        // only j > i. Collect the slot ranges to search once per cell, merging adjacent ones.
-        std::uint32_t bound = 0;
-        int n_ranges = 0;
-        auto add_range = [&](std::uint32_t b, std::uint32_t e) {
-            if (b == e) return;
-            bound += e - b;
-            if (n_ranges > 0 && range_end[n_ranges - 1] == b)
-                range_end[n_ranges - 1] = e;
-            else
-                range_begin[n_ranges] = b, range_end[n_ranges] = e, ++n_ranges;
-        };
-        if (cells.is_deep(c)) {
-            add_range(cells.first(c + 1), cells.first(c + 1 + reach.x));
-            for (const int row : later_rows)
-                add_range(cells.first(c + row), cells.first(c + row + row_cells));
-        } else {
-            for (const int offset : stencil) {
-                const int c2 = c + offset;
-                if (c2 < c && cells.is_inner(c2)) continue;
-                add_range(cells.first(c2), cells.first(c2 + 1));
+    int c = -1;  // the cell whose ranges are collected
+    std::uint32_t bound = 0;
+    int n_ranges = 0;
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        const Place here = place_[i];
+        if (here.cell < 0) throw std::logic_error("NeighbourList::build: an owned particle lies outside the domain");
+        if (here.cell != c) {
+            // Inner cells before c are searched from their own particles; inner cells after c
+            // and ghost cells from c's. Collect the slot ranges once per cell, merging adjacent ones.
+            c = here.cell;
+            bound = 0;
+            n_ranges = 0;
+            auto add_range = [&](std::uint32_t b, std::uint32_t e) {
+                if (b == e) return;
+                bound += e - b;
+                if (n_ranges > 0 && range_end[n_ranges - 1] == b)
+                    range_end[n_ranges - 1] = e;
+                else
+                    range_begin[n_ranges] = b, range_end[n_ranges] = e, ++n_ranges;
+            };
+            if (cells.is_deep(c)) {
+                add_range(cells.first(c + 1), cells.first(c + 1 + reach.x));
+                for (const int row : later_rows)
+                    add_range(cells.first(c + row), cells.first(c + row + row_cells));
+            } else {
+                for (const int offset : stencil) {
+                    const int c2 = c + offset;
+                    if (c2 < c && cells.is_inner(c2)) continue;
+                    add_range(cells.first(c2), cells.first(c2 + 1));
+                }
             }
         }
-        const std::uint32_t own_end = cells.first(c + 1);
-        bound += own_end - cells.first(c);
-        for (std::uint32_t a = cells.first(c); a < own_end; ++a) {
-            const std::uint32_t i = member[a];
-            if (i >= n_owned)
-                throw std::logic_error("NeighbourList::build: a ghost lies inside the domain; "
-                                       "this region needs the general search");
-            const BinnedPoint xi = xb[a];
-            if (neighbour_.size() < count + bound) neighbour_.resize(count + bound + (count + bound) / 2);
-            std::uint32_t* out = neighbour_.data();
-            // Branch-free append: write every candidate, advance only past those in range.
-            auto consider = [&](std::uint32_t b) {
-                const float dx = xi.x - xb[b].x, dy = xi.y - xb[b].y, dz = xi.z - xb[b].z;
-                out[count] = member[b];
-                count += (dx * dx + dy * dy + dz * dz < r2f) ? 1 : 0;
-            };
-            for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);
-            for (int r = 0; r < n_ranges; ++r)
-                for (std::uint32_t b = range_begin[r]; b < range_end[r]; ++b) consider(b);
-            offset_[i + 1] = static_cast<std::uint32_t>(count);
-        }
+        const std::uint32_t a = here.slot, own_end = cells.first(c + 1);
+        const BinnedPoint xi = xb[a];
+        if (neighbour_.size() < count + bound + (own_end - a))
+            neighbour_.resize(count + bound + (own_end - a) + (count + bound) / 2);
+        std::uint32_t* out = neighbour_.data();
+        // Branch-free append: write every candidate, advance only past those in range.
+        auto consider = [&](std::uint32_t b) {
+            const float dx = xi.x - xb[b].x, dy = xi.y - xb[b].y, dz = xi.z - xb[b].z;
+            out[count] = member[b];
+            count += (dx * dx + dy * dy + dz * dz < r2f) ? 1 : 0;
+        };
+        for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);
+        for (int r = 0; r < n_ranges; ++r)
+            for (std::uint32_t b = range_begin[r]; b < range_end[r]; ++b) consider(b);
+        offset_[i + 1] = static_cast<std::uint32_t>(count);
     }
     n_pairs_ = count;
     keep_reference(store, n_owned);

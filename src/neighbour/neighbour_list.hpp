@@ -22,9 +22,9 @@ struct SquaredDisplacement {
     }
 };
 
-/// Half neighbour list over owned particles: pair (i, j) is listed once, under i, with j > i.
-/// Since ghosts are indexed after all owned particles, every owned–ghost pair is listed under
-/// its owned member; the rank owning the ghost lists the mirror pair, so no forces need to be
+/// Half neighbour list over owned particles: each pair is listed once, under one of its two
+/// particles (under the one in the earlier cell or slot; the general search: under i < j).
+/// Every owned–ghost pair is listed under its owned member; the rank owning the ghost lists the mirror pair, so no forces need to be
 /// sent back. Pairs closer than cutoff + skin at build time are listed; the list stays valid
 /// while no particle has moved more than skin/2.
 class NeighbourList {
@@ -73,6 +73,11 @@ private:
     double cutoff_ = 0, skin_ = 0;
     std::size_t n_pairs_ = 0;
     std::vector<std::uint32_t> offset_, neighbour_;
+    struct Place {
+        std::uint32_t slot;  ///< index into the cells' members
+        int cell;            ///< -1: not in an inner cell
+    };
+    std::vector<Place> place_;  ///< per owned particle, during build()
     std::vector<Vec3> built_at_;
 };
 

@@ -11,12 +11,7 @@ mpirun=$2
 here=$(cd "$(dirname "$0")" && pwd)
 dir=$(mktemp -d)
 trap 'rm -rf "$dir"' EXIT
-run() {
-    local np=$1; shift
-    if ! "$mpirun" -q --allow-run-as-root --oversubscribe -np "$np" "$exe" run "$@" >"$dir/last.log" 2>&1; then
-        echo "FAIL: emergent run $* on $np rank(s) exited non-zero:"; tail -5 "$dir/last.log"; exit 1
-    fi
-}
+. "$here/../support/mpi_run.sh"
 # Every id once in the last frame, particles and bodies, and rebalances done where asked.
 check_run() {
     /usr/bin/python3 - "$1" "$2" <<'PY'

@@ -38,7 +38,7 @@ TEST(PairFullList, SameForcesAsTheHalfListLoop) {
     list.build(store, cells);
     std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
     ForceSums sums;
-    force::pair_forces_half_list<force::PairFeatures<false>>(store, list, lj, sums);
+    force::pair_forces_half_list<force::PairFeatures<false>>(store, list, lj, sums, ForceContext{});
     const std::vector<Vec3> half(store.force.begin(), store.force.begin() + store.n_owned());
 
     NeighbourList full(2.5, 0.3);
