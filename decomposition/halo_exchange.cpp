@@ -41,9 +41,20 @@ std::size_t HaloExchange::stage_end(std::size_t first) const {
     return k;
 }
 
+bool HaloExchange::sends_messages(std::size_t first, std::size_t end) const {
+    for (std::size_t k = first; k < end; ++k) {
+        const Swap& swap = swaps_[k];
+        if (!swap.to_self && (swap.send_rank != MPI_PROC_NULL || swap.recv_rank != MPI_PROC_NULL)) return true;
+    }
+    return false;
+}
+
 std::size_t HaloExchange::refresh_stages() const {
     std::size_t stages = 0;
-    for (std::size_t k = 0; k < swaps_.size(); k = stage_end(k)) ++stages;
+    for (std::size_t k = 0, end; k < swaps_.size(); k = end) {
+        end = stage_end(k);
+        if (sends_messages(k, end)) ++stages;
+    }
     return std::max<std::size_t>(stages, 1);
 }
 
@@ -59,8 +70,17 @@ void HaloExchange::begin_refresh(ParticleStore& store, bool velocities) {
 }
 
 void HaloExchange::post_stage() {
-    requests_.clear();
-    if (next_swap_ >= swaps_.size()) return;
+    // Stages that only copy (a rank's own periodic images) or face no rank complete at once:
+    // they are done here, so that every stage the caller computes across has messages.
+    do {
+        wait_stage();
+        if (next_swap_ >= swaps_.size()) return;
+        post_one_stage();
+    } while (!sends_messages(stage_begin_, next_swap_));
+}
+
+void HaloExchange::post_one_stage() {
+    stage_begin_ = next_swap_;
     const std::size_t end = stage_end(next_swap_);
     for (std::size_t k = next_swap_; k < end; ++k) {
         const Swap& swap = swaps_[k];
@@ -107,19 +127,21 @@ void HaloExchange::wait_stage() {
     requests_.clear();
 }
 
+void HaloExchange::progress() {
+    if (requests_.empty()) return;
+    int done = 0;
+    MPI_Testall(static_cast<int>(requests_.size()), requests_.data(), &done, MPI_STATUSES_IGNORE);
+}
+
 void HaloExchange::advance_refresh() {
     if (!staged_position_) return;
-    wait_stage();
-    post_stage();
+    post_stage();  // waits for the stage in flight first
 }
 
 void HaloExchange::end_refresh() {
     if (!staged_position_) return;
+    while (next_swap_ < swaps_.size()) post_stage();
     wait_stage();
-    while (next_swap_ < swaps_.size()) {
-        post_stage();
-        wait_stage();
-    }
     staged_position_ = staged_velocity_ = nullptr;
 }
 

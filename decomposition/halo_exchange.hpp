@@ -44,7 +44,12 @@ public:
     void begin_refresh(ParticleStore& store, bool velocities);
     void advance_refresh();
     void end_refresh();
-    /// Stages of a refresh along the current plan (at least 1).
+    /// Lets MPI move the stage in flight along without waiting for it: large messages go by
+    /// a handshake that advances only inside MPI calls, so the caller calls this now and then
+    /// while it computes.
+    void progress();
+    /// Stages of a refresh along the current plan that exchange messages (at least 1): the
+    /// number of advance_refresh() calls worth computing between.
     std::size_t refresh_stages() const;
     /// Seconds spent waiting for ghost data in refreshes since it was made (the blocking ones:
     /// their whole exchanges).
@@ -106,7 +111,11 @@ private:
     /// The first swap after `first` that re-exports a ghost imported by a swap in
     /// [first, that swap): where the stage starting at `first` ends.
     std::size_t stage_end(std::size_t first) const;
+    /// Whether swaps [first, end) exchange messages with another rank.
+    bool sends_messages(std::size_t first, std::size_t end) const;
+    /// Completes the stage in flight and starts the next stages up to one with messages.
     void post_stage();
+    void post_one_stage();
     void wait_stage();
 
     MPI_Comm comm_ = MPI_COMM_NULL;
@@ -120,7 +129,7 @@ private:
     // per-swap send buffers of the stage in flight.
     std::vector<Vec3>* staged_position_ = nullptr;
     std::vector<Vec3>* staged_velocity_ = nullptr;
-    std::size_t next_swap_ = 0;
+    std::size_t next_swap_ = 0, stage_begin_ = 0;
     std::vector<MPI_Request> requests_;
     std::vector<std::vector<Vec3>> stage_send_;
     mutable double wait_seconds_ = 0;

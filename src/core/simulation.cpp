@@ -490,13 +490,19 @@ struct Simulation::Engine {
             // The first (pair) term's interior rows while the ghosts arrive, a share of them per
             // stage of the refresh; then its other rows and every other term, in the order of
             // the plain loop below, so each force sums the same terms in the same order.
+            // Each stage's share goes in kPokes pieces with a call into MPI between them, so
+            // that large messages' handshakes go on while the rows are summed.
+            constexpr std::size_t kPokes = 8;
             ForceContext rows = context;
-            const std::size_t stages = halo.refresh_stages();
-            for (std::size_t k = 0; k < stages; ++k) {
-                rows.first = n_interior * k / stages;
-                rows.last = n_interior * (k + 1) / stages;
+            const std::size_t stages = halo.refresh_stages(), pieces = stages * kPokes;
+            for (std::size_t k = 0; k < pieces; ++k) {
+                rows.first = n_interior * k / pieces;
+                rows.last = n_interior * (k + 1) / pieces;
                 forces.front()->add_forces(store, list, rows, sample, sums);
-                halo.advance_refresh();
+                if ((k + 1) % kPokes == 0)
+                    halo.advance_refresh();
+                else
+                    halo.progress();
             }
             halo.end_refresh();
             refresh_in_flight = false;
