@@ -2,9 +2,9 @@
 // One line for a failure, and no rank left waiting.
 #include "app/failure_report.hpp"
 
-#include <chrono>
 #include <cstdio>
-#include <thread>
+
+#include "decomposition/ranks_meet.hpp"
 
 namespace emergent::app {
 
@@ -24,19 +24,8 @@ int report_failure(MPI_Comm errors, int code, const std::string& line, bool rank
         print_line(line);
         return code;
     }
-    bool everyone = false;
-    if (!rank_local) {
-        MPI_Request request;
-        MPI_Ibarrier(errors, &request);
-        const auto until = std::chrono::steady_clock::now() + std::chrono::duration<double>(wait_seconds);
-        int done = 0;
-        while (!done && std::chrono::steady_clock::now() < until) {
-            MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-            if (!done) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-        }
-        everyone = done != 0;
-        // A barrier nobody else joins stays pending; the abort below ends it with the job.
-    }
+    // A barrier nobody else joins stays pending; the abort below ends it with the job.
+    const bool everyone = !rank_local && decomp::ranks_meet(errors, wait_seconds);
     if (everyone) {
         int worst = code;
         MPI_Allreduce(&code, &worst, 1, MPI_INT, MPI_MAX, errors);

@@ -3,9 +3,11 @@
 #include "io/run_output.hpp"
 
 #include <algorithm>
+#include <exception>
 #include <sstream>
 #include <utility>
 
+#include "decomposition/ranks_meet.hpp"
 #include "emergent/error.hpp"
 
 namespace emergent::io {
@@ -65,9 +67,21 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
     meta.elements = elements;
     trajectory_ =
         std::make_unique<H5mdWriter>(dir + "/trajectory" + suffix + ".h5", sim.comm(), meta);
+    if (sim.n_ranks() > 1) MPI_Comm_dup(sim.comm(), &unwinding_);
 }
 
-RunOutput::~RunOutput() = default;
+RunOutput::~RunOutput() {
+    if (unwinding_ == MPI_COMM_NULL) return;
+    // Closing the trajectory is collective. Left by an error that only this rank met (an
+    // internal fault in the middle of a step), the other ranks wait in the step's next
+    // collective and never come: closing would hang the job. The file is then left open
+    // (what was flushed stays) and the failure report ends the job.
+    if (std::uncaught_exceptions() > 0 && !decomp::ranks_meet(unwinding_, kUnwindWaitSeconds)) {
+        (void)trajectory_.release();
+        return;
+    }
+    MPI_Comm_free(&unwinding_);
+}
 
 void RunOutput::on_sample(const ThermoSample& t, const Measures& scene_measures) {
     if (!trajectory_) return;

@@ -57,6 +57,9 @@ private:
     bool first_step_seen_ = false;
     Problem* scene_ = nullptr;
     std::unique_ptr<WatchSnapshot> snapshot_;  // rank 0 only
+    /// For the destructor alone: whether every rank is unwinding from the same error.
+    MPI_Comm unwinding_ = MPI_COMM_NULL;
+    static constexpr double kUnwindWaitSeconds = 5.0;
 };
 
 /// Splits "a,b,c" into its items (spaces ignored); throws InputError for unknown items.

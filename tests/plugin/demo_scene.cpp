@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // An out-of-tree scene for the plugin test: a small WCA gas, built as a shared library.
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "emergent/plugin.hpp"
 #include "emergent/random.hpp"
@@ -9,7 +11,8 @@ namespace {
 
 class DemoGas final : public emergent::Problem {
 public:
-    explicit DemoGas(const emergent::Config& c) : n_(static_cast<int>(c.integer("n"))) {}
+    explicit DemoGas(const emergent::Config& c)
+        : n_(static_cast<int>(c.integer("n"))), fault_rank_(static_cast<int>(c.integer("fault_rank"))) {}
     void build(emergent::Simulation& sim) override {
         emergent::Box box;
         box.hi = {8, 8, 8};
@@ -23,9 +26,17 @@ public:
                              {0, 0, 0}, 0, i);
         sim.assign_thermal_velocities(1.0, 7);
     }
+    // A fault met by one rank alone in the middle of a run (tests/cli/one_rank_fails.sh): the
+    // others go on into the next step's collectives.
+    emergent::Measures measures(emergent::Simulation& sim) override {
+        if (sim.rank() == fault_rank_ && sim.step_index() >= 40)
+            throw std::runtime_error("demo-gas: fault on rank " + std::to_string(fault_rank_) + " at step " +
+                                     std::to_string(sim.step_index()));
+        return {};
+    }
 
 private:
-    int n_;
+    int n_, fault_rank_;
 };
 
 emergent::ProblemInfo demo_info() {
@@ -34,6 +45,7 @@ emergent::ProblemInfo demo_info() {
     info.description = "plugin test: a WCA gas from a shared library";
     info.schema = emergent::run_schema();
     info.schema.integer("n", 100, 1, 125, "1", "particles");
+    info.schema.integer("fault_rank", -1, -1, 1 << 20, "1", "rank that fails at its first sample from step 40 (-1: none)");
     info.schema.structural({"n"});
     info.presets["tiny"] = {{"steps", "100"}, {"equilibration_steps", "0"}};
     info.factory = [](const emergent::Config& c) { return std::make_unique<DemoGas>(c); };
