@@ -60,7 +60,7 @@ done
 /usr/bin/python3 - "$out" "$mode" "$cores" "$rounds" "${ranks[@]}" <<'PY'
 import json, statistics, sys
 out, mode, cores, rounds, ranks = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), [int(r) for r in sys.argv[5:]]
-parts = ["force", "neighbour", "migrate", "communicate", "integrate", "imbalance"]
+parts = ["force", "neighbour", "migrate", "communicate", "halo_wait", "integrate", "imbalance"]
 rows = []
 for np_ in ranks:
     runs = [json.load(open(f"{out}/np{np_}_round{r}.json")) for r in range(1, rounds + 1)]
@@ -77,7 +77,8 @@ for np_ in ranks:
     rows.append(row)
 base = rows[0]
 print(f"# median of {rounds} rounds; times in ms per step (slowest rank's, except imbalance: "
-      "slowest compute less the mean); neighbour includes migrate; messages and kB per rank per step")
+      "slowest compute less the mean); neighbour includes migrate; halo_wait (blocked on ghost data) "
+      "lies inside communicate, or inside force where the refresh overlaps; messages and kB per rank per step")
 print("# ranks  grid    N         step_ms  efficiency  " + "  ".join(f"{p:>11s}" for p in parts)
       + "  msgs  kB/step  B/particle  note")
 for r in rows:
