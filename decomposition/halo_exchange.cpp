@@ -147,6 +147,9 @@ void HaloExchange::end_refresh() {
 
 void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double width,
                          unsigned fields) {
+    // A refresh left in flight (a run stopped between its start and the forces, its last good
+    // state restored) lands first: its receives write into the arrays rebuilt below.
+    end_refresh();
     fields |= kPosition;
     comm_ = grid.comm();
     exports_elsewhere_ = false;
