@@ -6,12 +6,7 @@
 # overlap ran and report a non-empty interior.
 # usage: halo_overlap.sh EMERGENT MPIRUN
 set -euo pipefail
-exe=$1
-mpirun=$2
-here=$(cd "$(dirname "$0")" && pwd)
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-. "$here/../support/mpi_run.sh"
+. "$(dirname "$0")/../support/mpi_run.sh"
 # The summary says whether the overlap ran; with it, some rows must be interior.
 check_summary() {
     /usr/bin/python3 - "$1" "$2" <<'PY'

@@ -6,12 +6,7 @@
 # and the drum's bed, which equal slabs split unevenly, ends better balanced.
 # usage: load_balance.sh EMERGENT MPIRUN
 set -euo pipefail
-exe=$1
-mpirun=$2
-here=$(cd "$(dirname "$0")" && pwd)
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
-. "$here/../support/mpi_run.sh"
+. "$(dirname "$0")/../support/mpi_run.sh"
 # Every id once in the last frame, particles and bodies, and rebalances done where asked.
 check_run() {
     /usr/bin/python3 - "$1" "$2" <<'PY'
