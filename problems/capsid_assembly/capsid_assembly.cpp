@@ -45,7 +45,10 @@ public:
         n_solvent_ = implicit_ ? 0 : n_total_ - n_capsomers_;
         length_ = std::cbrt(double(n_total_) / c.real("density"));
         const std::string start = c.text("start");
-        shell_members_ = start == "shell" ? kShell : (start == "open_shell" ? kShell - 1 : 0);
+        shell_members_ = start == "shell" ? kShell
+                         : start == "open_shell" ? kShell - 1
+                         : start == "cluster"    ? int(c.integer("cluster_size"))
+                                                 : 0;
         if (n_capsomers_ < shell_members_)
             throw InputError(c.scene() + ": start=" + start + " needs capsomers >= " +
                              std::to_string(shell_members_) + ", got " + std::to_string(n_capsomers_));
@@ -65,6 +68,8 @@ public:
         rule_.partner = design_.partner;
         rule_.faces = design_.faces;
         rule_.bond_range = c.real("bond_range");
+        shell_order_ = start == "cluster" ? compact_patch_order() : std::vector<int>{};
+        sample_every_ = c.integer("sample_every");
     }
 
     void build(Simulation& sim) override {
@@ -112,9 +117,10 @@ public:
         std::vector<Vec3> com;
         std::vector<Quat> turn;
         const std::vector<Quat> group = icosahedral_rotations();
-        for (int k = 0; k < shell_members_; ++k) {
-            com.push_back(middle + rotate(group[std::size_t(k)], centre_));
-            turn.push_back(group[std::size_t(k)]);
+        for (int m = 0; m < shell_members_; ++m) {
+            const std::size_t k = shell_order_.empty() ? std::size_t(m) : std::size_t(shell_order_[std::size_t(m)]);
+            com.push_back(middle + rotate(group[k], centre_));
+            turn.push_back(group[k]);
         }
         // Monomers at random, apart from each other (no two spheres closer than a diameter)
         // and, with a shell, outside it.
@@ -233,6 +239,12 @@ public:
         const double nb = double(std::max<long long>(1, k.n_bodies));
         if (!previous_.bodies.empty()) events_.tally(previous_, census);
         previous_ = census;
+        // Every second regular sample feeds the same tallies at twice the interval.
+        const long long step = sim.step_index();
+        if (step % sample_every_ == 0 && (step / sample_every_) % 2 == 0) {
+            if (!previous_coarse_.bodies.empty()) coarse_.tally(previous_coarse_, census);
+            previous_coarse_ = census;
+        }
         last_shells_ = census.complete_clusters(kShell, kFullDegree);
         last_largest_ = census.largest_cluster();
         return {{"bonds", {double(census.bonds.size())}},
@@ -246,17 +258,21 @@ public:
                 {"capsomer_temperature", {2 * k.translational / (3 * nb), 2 * k.rotational / (3 * nb)}},
                 {"growth_events", events_.grew},
                 {"loss_events", events_.shrank},
-                {"clusters_seen", events_.seen}};
+                {"clusters_seen", events_.seen},
+                {"growth_events_coarse", coarse_.grew},
+                {"loss_events_coarse", coarse_.shrank},
+                {"clusters_seen_coarse", coarse_.seen}};
     }
 
     // The event tallies go on across a continuation, from the last sample's clusters.
     Measures saved_state() const override {
-        std::vector<double> bodies(previous_.bodies.begin(), previous_.bodies.end()),
-            cluster(previous_.cluster.begin(), previous_.cluster.end()),
-            sizes(previous_.cluster_size.begin(), previous_.cluster_size.end());
-        return {{"growth_events", events_.grew}, {"loss_events", events_.shrank},
-                {"clusters_seen", events_.seen}, {"previous_bodies", bodies},
-                {"previous_cluster", cluster}, {"previous_sizes", sizes}};
+        Measures m{{"growth_events", events_.grew}, {"loss_events", events_.shrank},
+                   {"clusters_seen", events_.seen},
+                   {"growth_events_coarse", coarse_.grew}, {"loss_events_coarse", coarse_.shrank},
+                   {"clusters_seen_coarse", coarse_.seen}};
+        save_census(m, "previous", previous_);
+        save_census(m, "previous_coarse", previous_coarse_);
+        return m;
     }
 
     void restore_state(const std::map<std::string, std::vector<double>>& state) override {
@@ -268,10 +284,13 @@ public:
         events_.grew = get("growth_events");
         events_.shrank = get("loss_events");
         events_.seen = get("clusters_seen");
-        previous_ = BondCensus{};
-        for (double x : get("previous_bodies")) previous_.bodies.push_back(std::int64_t(x));
-        for (double x : get("previous_cluster")) previous_.cluster.push_back(int(x));
-        for (double x : get("previous_sizes")) previous_.cluster_size.push_back(int(x));
+        previous_ = restore_census(get, "previous");
+        // Checkpoints from before the coarse tallies start them afresh.
+        if (state.count("growth_events_coarse") == 0) return;
+        coarse_.grew = get("growth_events_coarse");
+        coarse_.shrank = get("loss_events_coarse");
+        coarse_.seen = get("clusters_seen_coarse");
+        previous_coarse_ = restore_census(get, "previous_coarse");
     }
 
     std::string progress_note(const Measures&) const override {
@@ -281,6 +300,54 @@ public:
     }
 
 private:
+    /// The closed shell's members in the order a compact patch grows: from member 0, each next
+    /// member is the one with the most bonds to those already taken (ties: the lowest index).
+    /// A seeded cluster of n is the first n, the most strongly bound patch of its size.
+    std::vector<int> compact_patch_order() const {
+        const std::vector<Quat> group = icosahedral_rotations();
+        std::vector<SiteRecord> sites;
+        for (std::size_t k = 0; k < group.size(); ++k)
+            for (std::size_t t = 0; t < design_.sites.size(); ++t)
+                sites.push_back({rotate(group[k], design_.sites[t]), int(t), std::int64_t(k)});
+        Box open;
+        open.lo = {-100, -100, -100};
+        open.hi = {100, 100, 100};
+        for (bool& p : open.periodic) p = false;
+        const BondCensus census = find_site_bonds(sites, rule_, open);
+        std::vector<std::vector<int>> next(group.size());
+        for (const auto& [i, j] : census.bonds) {
+            next[std::size_t(i)].push_back(j);
+            next[std::size_t(j)].push_back(i);
+        }
+        std::vector<int> order{0}, links(group.size(), 0);
+        std::vector<bool> taken(group.size(), false);
+        taken[0] = true;
+        while (order.size() < group.size()) {
+            for (const int j : next[std::size_t(order.back())]) ++links[std::size_t(j)];
+            int best = -1;
+            for (std::size_t j = 0; j < group.size(); ++j)
+                if (!taken[j] && (best < 0 || links[j] > links[std::size_t(best)])) best = int(j);
+            taken[std::size_t(best)] = true;
+            order.push_back(best);
+        }
+        return order;
+    }
+
+    static void save_census(Measures& m, const std::string& name, const BondCensus& c) {
+        m.push_back({name + "_bodies", std::vector<double>(c.bodies.begin(), c.bodies.end())});
+        m.push_back({name + "_cluster", std::vector<double>(c.cluster.begin(), c.cluster.end())});
+        m.push_back({name + "_sizes", std::vector<double>(c.cluster_size.begin(), c.cluster_size.end())});
+    }
+
+    template <class Get>
+    static BondCensus restore_census(const Get& get, const std::string& name) {
+        BondCensus c;
+        for (double x : get((name + "_bodies").c_str())) c.bodies.push_back(std::int64_t(x));
+        for (double x : get((name + "_cluster").c_str())) c.cluster.push_back(int(x));
+        for (double x : get((name + "_sizes").c_str())) c.cluster_size.push_back(int(x));
+        return c;
+    }
+
     Config c_;
     Capsomer design_;
     SiteBondRule rule_;
@@ -290,8 +357,12 @@ private:
     Vec3 centre_{0, 0, 0};
     int last_shells_ = 0, last_largest_ = 0;
     bool implicit_ = false;
+    std::vector<int> shell_order_;  ///< start=cluster: the seeded patch's members, in order
+    long long sample_every_ = 1;
     BondCensus previous_;  ///< at the last sample
+    BondCensus previous_coarse_;  ///< at the last sample of the coarse tally
     ClusterEvents events_{kShell};
+    ClusterEvents coarse_{kShell};  ///< from every second sample (twice the interval)
 };
 
 ProblemInfo capsid_assembly_info() {
@@ -325,11 +396,15 @@ ProblemInfo capsid_assembly_info() {
               "implicit solvent: relaxation rate of a capsomer's velocity (D = T / (M rate))")
         .real("friction_rotation", 0.05, 0, 1e6, "1/tau",
               "implicit solvent: relaxation rate of its angular velocity about each principal axis")
-        .choice("start", "monomers", {"monomers", "shell", "open_shell"},
+        .choice("start", "monomers", {"monomers", "shell", "open_shell", "cluster"},
                 "monomers: all capsomers apart; shell: one closed shell at the centre plus "
-                "monomers; open_shell: that shell less one capsomer (a 59-cluster) plus monomers");
+                "monomers; open_shell: that shell less one capsomer (a 59-cluster) plus monomers; "
+                "cluster: a compact patch of the shell of cluster_size members plus monomers")
+        .integer("cluster_size", 30, 1, kShell, "1",
+                 "start=cluster: members of the seeded patch (each next member the one with the "
+                 "most bonds to those before)");
     info.schema.structural({"capsomers", "particle_fraction", "density", "edge", "mass_ratio",
-                            "attraction_range", "harmonic_range", "start", "solvent"})
+                            "attraction_range", "harmonic_range", "start", "solvent", "cluster_size"})
         .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau",
                      "friction_translation", "friction_rotation"});
     info.presets["tiny"] = {{"capsomers", "60"}, {"start", "shell"}, {"steps", "2000"},

@@ -8,7 +8,11 @@
 #   collisions alone (the thermostat acts on the solvent only), in translation and rotation;
 #   with an implicit solvent (Langevin capsomers) they reach its temperature in both;
 #   a run continued from a checkpoint ends as the straight run does, and its cluster-event
-#   tallies go on from the checkpoint's (60 monomers seen at each of 9 intervals: 540).
+#   tallies go on from the checkpoint's (60 monomers seen at each of 9 intervals: 540; the
+#   coarse tallies, every second sample, 60 at each of 4 intervals: 240, with the checkpoint
+#   between two of their samples);
+#   a seeded cluster (start=cluster) is one cluster of cluster_size members: a dimer has 1 bond,
+#   the trimer is fully bonded (3), 59 members are the shell less one (150 - 5 = 145 bonds).
 # usage: capsid_assembly_tiny.sh EMERGENT MPIRUN
 set -euo pipefail
 exe=$1
@@ -31,6 +35,10 @@ part=(--preset tiny --set progress_interval=0 --set attraction=0.05 --set start=
 "$exe" run capsid-assembly "${part[@]}" --set steps=2000 -o "$dir/straight" >/dev/null
 "$exe" run capsid-assembly "${part[@]}" --set steps=1000 --checkpoint-every 1000 -o "$dir/part" >/dev/null
 "$exe" run --restart "$dir/part/checkpoint.h5" --set steps=2000 -o "$dir/part" >/dev/null
+for n in 2 3 59; do
+  "$exe" run capsid-assembly --set progress_interval=0 --set capsomers=80 --set solvent=implicit \
+    --set start=cluster --set cluster_size=$n --set steps=10 --set sample_every=10 -o "$dir/cluster$n" >/dev/null
+done
 if [ "$(tail -n 1 "$dir/straight/thermo.dat")" != "$(tail -n 1 "$dir/part/thermo.dat")" ]; then
   echo "FAIL: the continued run does not end as the straight run"; exit 1
 fi
@@ -82,6 +90,17 @@ seen = [json.load(open(f"{d}/{r}/summary.json"))["scene_measures"]["clusters_see
 print(f"continued run: monomers seen {seen[1]:.0f} (straight run {seen[0]:.0f})")
 if seen != [540, 540]:
     fail.append("the cluster-event tallies did not go on across the checkpoint")
+coarse = [json.load(open(f"{d}/{r}/summary.json"))["scene_measures"]["clusters_seen_coarse"][0]
+          for r in ("straight", "part")]
+print(f"continued run, coarse tallies: monomers seen {coarse[1]:.0f} (straight run {coarse[0]:.0f})")
+if coarse != [240, 240]:
+    fail.append("the coarse cluster-event tallies did not go on across the checkpoint")
+for n, expected in ((2, 1), (3, 3), (59, 145)):
+    m = json.load(open(f"{d}/cluster{n}/summary.json"))["scene_measures"]
+    print(f"start=cluster, {n} members: largest {m['largest_cluster']:.0f}, bonds {m['bonds']:.0f}, "
+          f"clusters {m['clusters']:.0f}")
+    if (m["largest_cluster"], m["bonds"], m["clusters"]) != (n, expected, 80 - n + 1):
+        fail.append(f"the seeded cluster of {n} is not one cluster with {expected} bonds")
 if fail:
     sys.exit("FAIL: " + "; ".join(fail))
 print("ok")
