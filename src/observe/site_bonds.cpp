@@ -5,6 +5,7 @@
 #include <mpi.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <set>
@@ -109,13 +110,15 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
     auto key = [&](int cx, int cy, int cz, int type) {
         return ((std::int64_t(cx) * n_cells[1] + cy) * n_cells[2] + cz) * n_types + type;
     };
-    std::unordered_map<std::int64_t, std::vector<std::uint32_t>> bins;
+    // (key, site) sorted by key: a cell's sites of one type are one contiguous run.
+    std::vector<std::pair<std::int64_t, std::uint32_t>> bins(sites.size());
     for (std::size_t s = 0; s < sites.size(); ++s) {
         if (sites[s].type < 0 || sites[s].type >= n_types)
             throw InputError("site bonds: site type " + std::to_string(sites[s].type) + " unknown");
-        bins[key(cell_of(sites[s].x, 0), cell_of(sites[s].x, 1), cell_of(sites[s].x, 2), sites[s].type)]
-            .push_back(std::uint32_t(s));
+        bins[s] = {key(cell_of(sites[s].x, 0), cell_of(sites[s].x, 1), cell_of(sites[s].x, 2), sites[s].type),
+                   std::uint32_t(s)};
     }
+    std::sort(bins.begin(), bins.end());
     auto separation = [&](Vec3 d) {
         for (int k = 0; k < 3; ++k)
             if (box.periodic[k]) {
@@ -133,7 +136,8 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
         const int want = rule.partner[std::size_t(s.type)];
         const int i = index_of(s.body);
         const int c[3] = {cell_of(s.x, 0), cell_of(s.x, 1), cell_of(s.x, 2)};
-        std::set<std::int64_t> near;  // distinct neighbouring cells (few cells: images repeat)
+        std::array<std::int64_t, 27> near;  // distinct neighbouring cells (few cells: images repeat)
+        std::size_t n_near = 0;
         for (int dx = -1; dx <= 1; ++dx)
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dz = -1; dz <= 1; ++dz) {
@@ -143,12 +147,15 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
                         if (box.periodic[d]) q[d] = ((q[d] % n_cells[d]) + n_cells[d]) % n_cells[d];
                         else inside = inside && q[d] >= 0 && q[d] < n_cells[d];
                     }
-                    if (inside) near.insert(key(q[0], q[1], q[2], want));
+                    if (inside) near[n_near++] = key(q[0], q[1], q[2], want);
                 }
-        for (const std::int64_t k : near) {
-            const auto bin = bins.find(k);
-            if (bin == bins.end()) continue;
-            for (const std::uint32_t o : bin->second) {
+        std::sort(near.begin(), near.begin() + std::ptrdiff_t(n_near));
+        n_near = std::size_t(std::unique(near.begin(), near.begin() + std::ptrdiff_t(n_near)) - near.begin());
+        for (std::size_t n = 0; n < n_near; ++n) {
+            const std::int64_t k = near[n];
+            auto bin = std::lower_bound(bins.begin(), bins.end(), std::make_pair(k, std::uint32_t(0)));
+            for (; bin != bins.end() && bin->first == k; ++bin) {
+                const std::uint32_t o = bin->second;
                 if (sites[o].body == s.body) continue;
                 const Vec3 d = separation(s.x - sites[o].x);
                 if (dot(d, d) >= range_sq) continue;

@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# capsid-assembly growth-step probabilities (the paper: at e = 0.09 a dimer grows to a trimer
+# with ~1 % probability, a trimer to a tetramer ~50 %, each step from 4 to 50 ~60 %): for each
+# seeded size n (start=cluster, a compact patch of the closed shell plus monomers; n = 1 means
+# start=monomers), runs the implicit solvent at the given attraction and sums the scene's event
+# tallies over seeds: a cluster of n that has n + 1 members at the next sample grew, n - 1
+# shrank; P_n = grew / (grew + shrank) is the chance that a change of size is growth. The same
+# trajectories are also tallied from every second sample (twice the interval): the probabilities
+# must not change when the interval is halved. Monomer runs use MONOMER_CAPSOMERS (more dimers).
+# usage: benchmarks/capsid_growth_steps.sh [OUT] [SIZES...]   (defaults /tmp/capsid_growth;
+#        sizes 1 2 3 4 6 8 12 16 20 25 30 35 40 45 50 55); E (0.09), SEEDS ("41 42"), STEPS
+#        (100000), SAMPLE (25 steps), CAPSOMERS (120), MONOMER_CAPSOMERS (300) override. Runs
+#        already complete in OUT are kept; the table goes to stdout.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-/tmp/capsid_growth}
+shift || true
+sizes=${*:-1 2 3 4 6 8 12 16 20 25 30 35 40 45 50 55}
+. benchmarks/common.sh
+e=${E:-0.09}
+seeds=${SEEDS:-"41 42"}
+steps=${STEPS:-100000}
+sample=${SAMPLE:-25}
+capsomers=${CAPSOMERS:-120}
+monomer_capsomers=${MONOMER_CAPSOMERS:-300}
+mkdir -p "$out"
+echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction 0.022, solvent implicit; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+for n in $sizes; do
+  for seed in $seeds; do
+    file="$out/n${n}_seed$seed.json"
+    [ -f "$file" ] && continue
+    if [ "$n" = 1 ]; then start=(--set start=monomers --set capsomers="$monomer_capsomers")
+    else start=(--set start=cluster --set cluster_size="$n" --set capsomers="$capsomers"); fi
+    "$exe" run capsid-assembly "${start[@]}" --set solvent=implicit --set attraction="$e" \
+      --set seed="$seed" --set steps="$steps" --set sample_every="$sample" \
+      --set progress_interval=0 --summary-json "$file.tmp" >/dev/null
+    mv "$file.tmp" "$file"
+  done
+done
+/usr/bin/python3 - "$out" "$sizes" "$seeds" "$sample" <<'PY'
+import json, math, sys
+out, sizes, seeds, sample = sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), int(sys.argv[4])
+grew = {"fine": [0] * 60, "coarse": [0] * 60}
+shrank = {"fine": [0] * 60, "coarse": [0] * 60}
+seen = {"fine": [0] * 60, "coarse": [0] * 60}
+wall = 0.0
+for n in sizes:
+    for seed in seeds:
+        s = json.load(open(f"{out}/n{n}_seed{seed}.json"))
+        m = s["scene_measures"]
+        wall += s["wall_seconds"]
+        for tally, suffix in (("fine", ""), ("coarse", "_coarse")):
+            for k in range(60):
+                grew[tally][k] += m["growth_events" + suffix][k]
+                shrank[tally][k] += m["loss_events" + suffix][k]
+                seen[tally][k] += m["clusters_seen" + suffix][k]
+
+def wilson(g, t):
+    """P = g / t with its 95 % Wilson interval (exact enough for a few events; t = 0: none)."""
+    if t == 0:
+        return None
+    z, p = 1.96, g / t
+    centre = (p + z * z / (2 * t)) / (1 + z * z / t)
+    half = z * math.sqrt(p * (1 - p) / t + z * z / (4 * t * t)) / (1 + z * z / t)
+    return p, max(0.0, centre - half), min(1.0, centre + half)
+
+def row(label, lo, hi):
+    cells = [label]
+    for tally in ("fine", "coarse"):
+        g = sum(grew[tally][k - 1] for k in range(lo, hi + 1))
+        l = sum(shrank[tally][k - 1] for k in range(lo, hi + 1))
+        w = wilson(g, g + l)
+        cells += [f"{g:.0f}", f"{l:.0f}", "-" if w is None else f"{w[0]:.3f} ({w[1]:.3f}-{w[2]:.3f})"]
+    print("| " + " | ".join(cells) + " |")
+
+tau = 0.005 * sample
+print(f"# growth events g, loss events l and P = g / (g + l) (95 % Wilson interval), tallied every "
+      f"{sample} steps ({tau:g} tau) and every {2 * sample} ({2 * tau:g} tau) on the same runs; "
+      f"total wall {wall:.0f} s")
+print(f"| size n | g ({tau:g} tau) | l | P | g ({2 * tau:g} tau) | l | P |")
+print("|---|---|---|---|---|---|---|")
+row("2 (dimer -> trimer)", 2, 2)
+row("3 (trimer -> tetramer)", 3, 3)
+for lo, hi in ((4, 10), (11, 20), (21, 30), (31, 40), (41, 50), (51, 59)):
+    row(f"{lo}-{hi}", lo, hi)
+row("4-50 (paper: ~0.6)", 4, 50)
+print("# per size (fine tally): n seen grew shrank")
+for k in range(1, 60):
+    if grew["fine"][k] + shrank["fine"][k] > 0 or k + 1 in (2, 3):
+        print(f"# {k + 1} {seen['fine'][k]:.0f} {grew['fine'][k]:.0f} {shrank['fine'][k]:.0f}")
+PY
