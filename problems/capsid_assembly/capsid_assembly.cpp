@@ -34,9 +34,19 @@ Quat random_rotation(std::uint64_t seed, std::uint64_t id) {
                            gaussian(seed, id, 23)});
 }
 
+/// The capsomer of `shape` at `edge` (0: the shape's own, PW 2.1, PH 3.6).
+Capsomer design(const Config& c) {
+    const bool ph = c.text("shape") == "ph";
+    const double edge = c.real("edge") > 0 ? c.real("edge") : (ph ? 3.6 : 2.1);
+    if (edge < 1)
+        throw InputError(c.scene() + ": edge=" + c.text("edge") + " is below 1, the spheres' diameter "
+                         "(0 takes the shape's own)");
+    return ph ? ph_capsomer(edge) : pw_capsomer(edge);
+}
+
 class CapsidAssembly final : public Problem {
 public:
-    explicit CapsidAssembly(const Config& c) : c_(c), design_(pw_capsomer(c.real("edge"))) {
+    explicit CapsidAssembly(const Config& c) : c_(c), design_(design(c)) {
         n_capsomers_ = c.integer("capsomers");
         const double p = c.real("particle_fraction");
         n_total_ = std::llround(double(n_capsomers_) / p);
@@ -375,7 +385,11 @@ ProblemInfo capsid_assembly_info() {
         .real("particle_fraction", 0.022, 1e-6, 1, "1",
               "p = N_p / N with N = capsomers + solvent atoms (each capsomer counted once)", true)
         .real("density", 0.1, 1e-6, 1, "sigma^-3", "overall number density N / V", true)
-        .real("edge", 2.1, 1, 10, "sigma", "short edge a of the PW capsomer (outer face a, a, a, 2a)", true)
+        .choice("shape", "pw", {"pw", "ph"},
+                "pw: truncated pyramid on a third of an icosahedron face (outer face a, a, a, 2a); "
+                "ph: on a face of the pentagonal hexecontahedron (the same bond network)")
+        .real("edge", 0, 0, 10, "sigma",
+              "pw: the short edge a; ph: the long edge; 0: the shape's own (2.1, 3.6)")
         .real("mass_ratio", 15, 0, 1e6, "m", "capsomer mass / solvent atom mass", true)
         .real("attraction", 0.09, 0, 10, "epsilon", "attraction strength e of the site pairs (eq. 6)")
         .real("attraction_range", 3, 0.5, 10, "sigma", "r_a: the attraction's range", true)
@@ -403,7 +417,7 @@ ProblemInfo capsid_assembly_info() {
         .integer("cluster_size", 30, 1, kShell, "1",
                  "start=cluster: members of the seeded patch (each next member the one with the "
                  "most bonds to those before)");
-    info.schema.structural({"capsomers", "particle_fraction", "density", "edge", "mass_ratio",
+    info.schema.structural({"capsomers", "particle_fraction", "density", "shape", "edge", "mass_ratio",
                             "attraction_range", "harmonic_range", "start", "solvent", "cluster_size"})
         .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau",
                      "friction_translation", "friction_rotation"});

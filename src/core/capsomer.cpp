@@ -109,42 +109,34 @@ std::vector<Quat> icosahedral_rotations() {
     return group;
 }
 
-Capsomer pw_capsomer(double edge) {
-    if (!(edge > 0)) throw std::invalid_argument("pw_capsomer: edge must be > 0");
-    Capsomer c;
-    c.edge = edge;
-    const double phi = 0.5 * (1 + std::sqrt(5.0)), s = 1.5 * edge;  // icosahedron edge 3a
-    const Vec3 A = s * Vec3{0, 1, phi}, B = s * Vec3{phi, 0, 1}, C = s * Vec3{1, phi, 0};
-    const Vec3 P = A + (1.0 / 3) * (B - A), O = (1.0 / 3) * (A + B + C), R = A + (2.0 / 3) * (C - A);
-    const Vec3 X = A + (1.0 / 3) * (C - A);  // the long base's midpoint (a T-junction in the shell)
-    c.outer_face = {A, P, O, R};
-    const Vec3 normal = unit(O);  // the face ABC is normal to its centre's direction
-    c.face_distance = norm(O);
-    const Vec3 middle = 0.25 * (A + P + O + R);
+namespace {
+
+/// A contact face: the segment of the outer face it stands on, from the end nearer the axis
+/// relating the pair to the other end, and the two fractions along it at which sites sit.
+struct Contact {
+    Vec3 from, to;
+    double u[2];
+};
+
+/// Spheres, sites and partners of a capsomer whose outer face and its distance from the centre
+/// are set: the truncated pyramid on that face with its apex at the shell's centre. `outward`:
+/// the face's unit normal.
+void fill_capsomer(Capsomer& c, const Vec3& outward, const std::vector<Contact>& contacts) {
+    const std::size_t n = c.outer_face.size();
+    Vec3 middle{0, 0, 0};
+    for (const Vec3& v : c.outer_face) middle += v;
+    middle *= 1.0 / double(n);
     std::vector<Vec3> inward;  // lateral planes through the centre, one per edge V_k V_k+1
-    for (std::size_t k = 0; k < 4; ++k) {
-        Vec3 m = unit(cross(c.outer_face[k], c.outer_face[(k + 1) % 4]));
+    for (std::size_t k = 0; k < n; ++k) {
+        Vec3 m = unit(cross(c.outer_face[k], c.outer_face[(k + 1) % n]));
         inward.push_back(dot(m, middle) > 0 ? m : -1.0 * m);
     }
     const double depths[2] = {0.5, 1.2};
     for (const double d : depths) {
         const std::vector<Vec3> layer =
-            sphere_layer(c.outer_face, normal, c.face_distance - d, inward, c.sphere_inset);
+            sphere_layer(c.outer_face, outward, c.face_distance - d, inward, c.sphere_inset);
         c.spheres.insert(c.spheres.end(), layer.begin(), layer.end());
     }
-    // Contact faces: (the end nearer the axis relating the pair, the other end, fractions).
-    // 5-fold contacts are measured from the shell vertex (at 0.25 the two non-adjacent pentamer
-    // members' matching sites would come within 0.4, inside the bond range), 3-fold from the
-    // face centre; the 2-fold contact is its own partner, so its fractions are symmetric.
-    struct Contact {
-        Vec3 from, to;
-        double u[2];
-    };
-    const Contact contacts[5] = {{A, X, {0.4, 0.85}},    // long base, A half: 5-fold +72 deg
-                                 {A, P, {0.4, 0.85}},    // short leg: 5-fold -72 deg
-                                 {O, P, {0.25, 0.75}},   // top: 3-fold +120 deg
-                                 {O, R, {0.25, 0.75}},   // leg: 3-fold -120 deg
-                                 {R, X, {0.25, 0.75}}};  // long base, R half: 2-fold
     for (const Contact& k : contacts) {
         std::vector<int> face;
         for (const double d : depths)
@@ -167,6 +159,132 @@ Capsomer pw_capsomer(double edge) {
     for (std::size_t a = 0; a < c.sites.size(); ++a)
         if (c.partner[a] < 0 || c.partner[std::size_t(c.partner[a])] != int(a))
             throw std::logic_error("capsomer: site " + std::to_string(a) + " has no mutual partner");
+}
+
+/// How far the five nearest other points of the orbit of the unit vector along d lie from
+/// their mean, relative to it: 0 for a vertex of the snub dodecahedron (five equal edges).
+double edge_spread(const std::vector<Quat>& group, const Vec3& d) {
+    const Vec3 v = unit(d);
+    std::vector<double> r;
+    for (std::size_t g = 1; g < group.size(); ++g) r.push_back(norm(rotate(group[g], v) - v));
+    std::partial_sort(r.begin(), r.begin() + 5, r.end());
+    return r[4] / r[0] - 1;
+}
+
+}  // namespace
+
+Capsomer pw_capsomer(double edge) {
+    if (!(edge > 0)) throw std::invalid_argument("pw_capsomer: edge must be > 0");
+    Capsomer c;
+    c.shape = "pw";
+    c.edge = edge;
+    const double phi = 0.5 * (1 + std::sqrt(5.0)), s = 1.5 * edge;  // icosahedron edge 3a
+    const Vec3 A = s * Vec3{0, 1, phi}, B = s * Vec3{phi, 0, 1}, C = s * Vec3{1, phi, 0};
+    const Vec3 P = A + (1.0 / 3) * (B - A), O = (1.0 / 3) * (A + B + C), R = A + (2.0 / 3) * (C - A);
+    const Vec3 X = A + (1.0 / 3) * (C - A);  // the long base's midpoint (a T-junction in the shell)
+    c.outer_face = {A, P, O, R};
+    c.face_distance = norm(O);  // the face ABC is normal to its centre's direction
+    // 5-fold contacts are measured from the shell vertex (at 0.25 the two non-adjacent pentamer
+    // members' matching sites would come within 0.4, inside the bond range), 3-fold from the
+    // face centre; the 2-fold contact is its own partner, so its fractions are symmetric.
+    fill_capsomer(c, unit(O), {{A, X, {0.4, 0.85}},     // long base, A half: 5-fold +72 deg
+                               {A, P, {0.4, 0.85}},     // short leg: 5-fold -72 deg
+                               {O, P, {0.25, 0.75}},    // top: 3-fold +120 deg
+                               {O, R, {0.25, 0.75}},    // leg: 3-fold -120 deg
+                               {R, X, {0.25, 0.75}}});  // long base, R half: 2-fold
+    return c;
+}
+
+Capsomer ph_capsomer(double long_edge) {
+    if (!(long_edge > 0)) throw std::invalid_argument("ph_capsomer: long_edge must be > 0");
+    const std::vector<Quat> group = icosahedral_rotations();
+    const double phi = 0.5 * (1 + std::sqrt(5.0));
+    const Vec3 five = unit(Vec3{0, 1, phi}), three = unit(Vec3{1, 1, 1});
+    // A vertex of the snub dodecahedron: the direction whose orbit under the group has five
+    // equal nearest distances. Coarse search between the 5-fold and the 3-fold axis, then
+    // coordinate descent to round-off.
+    const Vec3 across = unit(cross(five, three));
+    Vec3 v = five;
+    double best = 1e300;
+    for (int i = 1; i < 60; ++i)
+        for (int j = 0; j <= 60; ++j) {
+            const Vec3 d = (1 - i / 60.0) * five + (i / 60.0) * three + (j / 60.0 - 0.5) * across;
+            const double e = edge_spread(group, d);
+            if (e < best) best = e, v = d;
+        }
+    for (double step = 1e-2; step > 1e-14;) {
+        bool moved = false;
+        for (int k = 0; k < 3; ++k)
+            for (const double sign : {1.0, -1.0}) {
+                Vec3 d = v;
+                d[k] += sign * step;
+                const double e = edge_spread(group, d);
+                if (e < best) best = e, v = d, moved = true;
+            }
+        if (!moved) step *= 0.5;
+    }
+    if (best > 1e-9) throw std::logic_error("ph_capsomer: no snub dodecahedron vertex found");
+    // The other enantiomer (the shell's handedness is a choice; this one is the note's), then
+    // the five faces of the snub around v, in turn: their poles (reciprocal in the unit
+    // sphere) are the corners of the pentagonal hexecontahedron's face dual to v.
+    v = unit(v);
+    v.x = -v.x;
+    std::vector<Vec3> near;
+    {
+        std::vector<std::pair<double, Vec3>> orbit;
+        for (std::size_t g = 1; g < group.size(); ++g) {
+            const Vec3 w = rotate(group[g], v);
+            orbit.push_back({norm(w - v), w});
+        }
+        std::sort(orbit.begin(), orbit.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+        const Vec3 e1 = unit(orbit[0].second - dot(orbit[0].second, v) * v), e2 = cross(v, e1);
+        for (int k = 0; k < 5; ++k) near.push_back(orbit[std::size_t(k)].second);
+        std::sort(near.begin(), near.end(), [&](const Vec3& a, const Vec3& b) {
+            return std::atan2(dot(a - v, e2), dot(a - v, e1)) < std::atan2(dot(b - v, e2), dot(b - v, e1));
+        });
+    }
+    std::vector<Vec3> pole;
+    for (std::size_t k = 0; k < 5; ++k) {
+        Vec3 m = unit(cross(near[k] - v, near[(k + 1) % 5] - v));
+        if (dot(m, v) < 0) m = -1.0 * m;
+        pole.push_back((1 / dot(m, v)) * m);
+    }
+    // Turn the face so that its 5-fold corner lies on (0, 1, phi) and its 3-fold corner on
+    // (1, 1, 1), the shell frame of icosahedral_rotations(); V0 the 5-fold corner, V3 the
+    // 3-fold one.
+    auto along = [](const Vec3& x, const Vec3& axis) { return norm(cross(unit(x), axis)) < 1e-9 && dot(x, axis) > 0; };
+    Capsomer c;
+    Vec3 normal{0, 0, 0};
+    for (const Quat& g : group) {
+        std::vector<Vec3> f;
+        for (const Vec3& p : pole) f.push_back(rotate(g, p));
+        int k5 = -1, k3 = -1;
+        for (int k = 0; k < 5; ++k) {
+            if (along(f[std::size_t(k)], five)) k5 = k;
+            if (along(f[std::size_t(k)], three)) k3 = k;
+        }
+        if (k5 < 0 || k3 < 0) continue;
+        std::rotate(f.begin(), f.begin() + k5, f.end());
+        if ((k3 - k5 + 5) % 5 != 3) std::reverse(f.begin() + 1, f.end());
+        const double scale = long_edge / norm(f[1] - f[0]);
+        for (Vec3& x : f) x *= scale;
+        c.outer_face = f;
+        normal = rotate(g, v);  // the face lies in the plane x . v = 1 before scaling
+        c.face_distance = scale;
+        break;
+    }
+    if (c.outer_face.size() != 5) throw std::logic_error("ph_capsomer: the face does not reach the shell frame");
+    c.shape = "ph";
+    c.edge = long_edge;
+    const std::vector<Vec3>& V = c.outer_face;
+    // Both long edges meet at the 5-fold corner (5-fold contacts, measured from it as in PW);
+    // the two edges at the 3-fold corner are the 3-fold contacts, measured from it; V1 V2 is
+    // the 2-fold contact, its own partner.
+    fill_capsomer(c, normal, {{V[0], V[1], {0.4, 0.85}},
+                              {V[0], V[4], {0.4, 0.85}},
+                              {V[3], V[2], {0.25, 0.75}},
+                              {V[3], V[4], {0.25, 0.75}},
+                              {V[1], V[2], {0.25, 0.75}}});
     return c;
 }
 

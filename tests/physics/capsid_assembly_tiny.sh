@@ -3,6 +3,7 @@
 #   a closed shell at e = 0.09 stays one complete shell (60 members, 150 bonds, every degree 5)
 #   at every sample of 4000 steps, on 2 ranks (the shell straddles the domain boundary, so the
 #   census gathers sites across ranks);
+#   so does the closed shell of the alternative PH design (shape=ph), on 1 rank;
 #   the same shell with no attraction falls apart: no cluster larger than 5 at the end;
 #   without attraction, capsomers started apart take the solvent's temperature through
 #   collisions alone (the thermostat acts on the solvent only), in translation and rotation;
@@ -23,6 +24,8 @@ common=(--preset tiny --set progress_interval=0)
 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "$mpirun" -q --oversubscribe -np 2 \
   "$exe" run capsid-assembly "${common[@]}" --set attraction=0.09 --set seed=31 --set steps=4000 \
   --set sample_every=250 -o "$dir/bound" >/dev/null
+"$exe" run capsid-assembly "${common[@]}" --set shape=ph --set attraction=0.09 --set seed=31 --set steps=4000 \
+  --set sample_every=250 -o "$dir/ph" >/dev/null
 "$exe" run capsid-assembly "${common[@]}" --set attraction=0 --set seed=31 --set steps=4000 \
   --set sample_every=250 -o "$dir/free" >/dev/null
 "$exe" run capsid-assembly "${common[@]}" --set attraction=0 --set start=monomers --set seed=4242 \
@@ -57,6 +60,11 @@ _, shells = series("bound", "complete_shells")
 print(f"e=0.09: bonds {int(bonds.min())}..{int(bonds.max())}, complete shells {int(shells.min())}..{int(shells.max())} over {len(bonds)} samples")
 if bonds.min() != 150 or shells.min() != 1:
     fail.append("the closed shell did not stay closed at e=0.09")
+_, bonds = series("ph", "bonds")
+_, shells = series("ph", "complete_shells")
+print(f"PH design, e=0.09: bonds {int(bonds.min())}..{int(bonds.max())}, complete shells {int(shells.min())}..{int(shells.max())}")
+if bonds.min() != 150 or shells.min() != 1:
+    fail.append("the closed PH shell did not stay closed at e=0.09")
 _, largest = series("free", "largest_cluster")
 _, fbonds = series("free", "bonds")
 print(f"e=0: largest cluster {int(largest[0])} at the first sample, {int(largest[-1])} at the end; bonds at the end {int(fbonds[-1])}")

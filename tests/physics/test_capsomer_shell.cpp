@@ -4,7 +4,8 @@
 // code): the icosahedral group, coincident partner sites, the bond census of the exact shell
 // and of shells with particles removed, the attraction energy through the force term (one and
 // two ranks, the shell straddling the domain boundary) against a direct sum over site pairs,
-// and the same after a rigid motion of the whole shell.
+// and the same after a rigid motion of the whole shell; the alternative PH design against the
+// note's face, sphere count and shell energy.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -264,4 +265,81 @@ TEST(Capsomer, ClusterEventsBySize) {
     BondCensus other = after;
     other.bodies = {0, 1, 2, 3, 5};
     EXPECT_THROW(e.tally(before, other), std::logic_error);
+}
+
+TEST(Capsomer, PentagonalHexecontahedronDesign) {
+    // The PH face against the note's vertices (computed there with other code), to the 6
+    // decimals it gives; five contacts meeting five neighbours as in PW.
+    const Capsomer c = ph_capsomer();
+    const std::vector<Vec3> note{{0, 4.119307, 6.665178}, {2.911648, 2.003724, 6.583845},
+                                 {4.489803, 2.570624, 5.391955}, {4.314303, 4.314303, 4.314303},
+                                 {2.570624, 5.391955, 4.489803}};
+    ASSERT_EQ(c.outer_face.size(), 5u);
+    for (std::size_t k = 0; k < 5; ++k) EXPECT_LT(norm(c.outer_face[k] - note[k]), 2e-6) << "V" << k;
+    EXPECT_NEAR(c.face_distance, 7.20, 0.005);  // the note: "outer face at 7.20"
+    // Planar, at the face distance.
+    Vec3 normal = cross(c.outer_face[1] - c.outer_face[0], c.outer_face[2] - c.outer_face[0]);
+    normal *= 1 / norm(normal);
+    for (const Vec3& v : c.outer_face) EXPECT_NEAR(std::fabs(dot(normal, v)), c.face_distance, 1e-9);
+    ASSERT_EQ(c.sites.size(), 20u);
+    const std::vector<Quat> g = icosahedral_rotations();
+    int coincident = 0;
+    double closest_other = 1e300, closest_sphere = 1e300;
+    for (std::size_t a = 1; a < 60; ++a)
+        for (std::size_t i = 0; i < 20; ++i) {
+            const double r = norm(c.sites[i] - rotate(g[a], c.sites[std::size_t(c.partner[i])]));
+            if (r < 1e-9) ++coincident;
+            else closest_other = std::min(closest_other, r);
+        }
+    EXPECT_EQ(coincident, 20);
+    EXPECT_GT(closest_other, 0.5);
+    for (std::size_t a = 1; a < 60; ++a)
+        for (const Vec3& p : c.spheres)
+            for (const Vec3& q : c.spheres) closest_sphere = std::min(closest_sphere, norm(p - rotate(g[a], q)));
+    // The note: spheres of different particles at least 1.140 apart (2 x the inset 0.57).
+    EXPECT_NEAR(closest_sphere, 1.140, 0.0005);
+    // The note's count, 18 + 14. Each layer (0.5 and 1.2 below the face, inset 0.57 from the
+    // lateral planes) is covered to 0.55: no point of it is farther from a sphere centre, so
+    // no solvent atom (WCA range 1.12) fits through; checked on a grid of spacing 0.02.
+    EXPECT_EQ(c.spheres.size(), 32u);
+    std::vector<Vec3> inward;
+    Vec3 middle{0, 0, 0};
+    for (const Vec3& v : c.outer_face) middle += 0.2 * v;
+    for (std::size_t k = 0; k < 5; ++k) {
+        Vec3 m = cross(c.outer_face[k], c.outer_face[(k + 1) % 5]);
+        m *= (dot(m, middle) > 0 ? 1 : -1) / norm(m);
+        inward.push_back(m);
+    }
+    const Vec3 n = dot(normal, middle) > 0 ? normal : -1.0 * normal;
+    const Vec3 e1 = (1 / norm(c.outer_face[1] - c.outer_face[0])) * (c.outer_face[1] - c.outer_face[0]);
+    const Vec3 e2 = cross(n, e1);
+    double worst = 0;
+    int points = 0;
+    for (const double depth : {0.5, 1.2}) {
+        const Vec3 origin = ((c.face_distance - depth) / c.face_distance) * middle;
+        for (double s = -4; s <= 4; s += 0.02)
+            for (double t = -4; t <= 4; t += 0.02) {
+                const Vec3 x = origin + s * e1 + t * e2;
+                bool inside = true;
+                for (const Vec3& m : inward) inside = inside && dot(m, x) >= 0.57;
+                if (!inside) continue;
+                ++points;
+                double nearest = 1e300;
+                for (const Vec3& q : c.spheres) nearest = std::min(nearest, norm(x - q));
+                worst = std::max(worst, nearest);
+            }
+    }
+    EXPECT_GT(points, 1000);
+    EXPECT_LE(worst, 0.55 + 1e-3);  // the construction's grid is 0.01 fine
+    const BondCensus shell_census =
+        find_site_bonds(sites_at(c, shell({Quat{1, 0, 0, 0}, {20, 20, 20}})), bond_rule(c), big_box());
+    EXPECT_EQ(shell_census.bonds.size(), 150u);
+    for (const int d : shell_census.degree) EXPECT_EQ(d, 5);
+    EXPECT_EQ(shell_census.complete_clusters(60, 5), 1);
+    const std::vector<Pose> poses = shell({Quat{1, 0, 0, 0}, {20, 20, 20}});
+    const double direct = direct_energy(c, sites_at(c, poses));
+    EXPECT_NEAR(direct, -1219.15, 0.005);  // the note's shell energy at e = 0.09
+    EXPECT_NEAR(engine_energy(c, poses, kE), direct, 1e-9 * std::fabs(direct));
+    std::printf("PH: %zu spheres, closest non-bonded partner %.3f, shell energy %.2f at e = %.2f\n",
+                c.spheres.size(), closest_other, direct, kE);
 }
