@@ -2,15 +2,16 @@
 # capsid-assembly growth-step probabilities (the paper: at e = 0.09 a dimer grows to a trimer
 # with ~1 % probability, a trimer to a tetramer ~50 %, each step from 4 to 50 ~60 %): for each
 # seeded size n (start=cluster, a compact patch of the closed shell plus monomers; n = 1 means
-# start=monomers), runs the implicit solvent at the given attraction and sums the scene's event
-# tallies over seeds: a cluster of n that has n + 1 members at the next sample grew, n - 1
+# start=monomers), runs the implicit solvent (or SOLVENT) at the given attraction and sums the
+# scene's event tallies over seeds: a cluster of n that has n + 1 members at the next sample grew, n - 1
 # shrank; P_n = grew / (grew + shrank) is the chance that a change of size is growth. The same
 # trajectories are also tallied from every second sample (twice the interval): the probabilities
 # must not change when the interval is halved. Monomer runs use MONOMER_CAPSOMERS (more dimers).
 # usage: benchmarks/capsid_growth_steps.sh [OUT] [SIZES...]   (defaults /tmp/capsid_growth;
 #        sizes 1 2 3 4 6 8 12 16 20 25 30 35 40 45 50 55); E (0.09), SEEDS ("41 42"), STEPS
-#        (100000), SAMPLE (25 steps), CAPSOMERS (120), MONOMER_CAPSOMERS (300) override. Runs
-#        already complete in OUT are kept; the table goes to stdout.
+#        (100000), SAMPLE (25 steps), CAPSOMERS (120), MONOMER_CAPSOMERS (300), SOLVENT
+#        (implicit) override. Runs already complete in OUT are kept (one OUT per setting); the
+#        table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-/tmp/capsid_growth}
@@ -23,8 +24,9 @@ steps=${STEPS:-100000}
 sample=${SAMPLE:-25}
 capsomers=${CAPSOMERS:-120}
 monomer_capsomers=${MONOMER_CAPSOMERS:-300}
+solvent=${SOLVENT:-implicit}
 mkdir -p "$out"
-echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction 0.022, solvent implicit; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction 0.022, solvent $solvent; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
 echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
 for n in $sizes; do
   for seed in $seeds; do
@@ -32,7 +34,7 @@ for n in $sizes; do
     [ -f "$file" ] && continue
     if [ "$n" = 1 ]; then start=(--set start=monomers --set capsomers="$monomer_capsomers")
     else start=(--set start=cluster --set cluster_size="$n" --set capsomers="$capsomers"); fi
-    "$exe" run capsid-assembly "${start[@]}" --set solvent=implicit --set attraction="$e" \
+    "$exe" run capsid-assembly "${start[@]}" --set solvent="$solvent" --set attraction="$e" \
       --set seed="$seed" --set steps="$steps" --set sample_every="$sample" \
       --set progress_interval=0 --summary-json "$file.tmp" >/dev/null
     mv "$file.tmp" "$file"
