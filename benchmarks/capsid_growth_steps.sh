@@ -3,8 +3,9 @@
 # with ~1 % probability, a trimer to a tetramer ~50 %, each step from 4 to 50 ~60 %): for each
 # seeded size n (start=cluster, a compact patch of the closed shell plus monomers; n = 1 means
 # start=monomers), runs the implicit solvent (or SOLVENT) at the given attraction and sums the
-# scene's event tallies over seeds: a cluster of n that has n + 1 members at the next sample grew, n - 1
-# shrank; P_n = grew / (grew + shrank) is the chance that a change of size is growth. The same
+# scene's event tallies over seeds: a cluster of n that has n + 1 members at the next sample
+# grew, n - 1 shrank; P_n = grew / (grew + shrank) is the chance that a change of size is
+# growth. The same
 # trajectories are also tallied from every second sample (twice the interval): the probabilities
 # must not change when the interval is halved. Monomer runs use MONOMER_CAPSOMERS (more dimers).
 # usage: benchmarks/capsid_growth_steps.sh [OUT] [SIZES...]   (defaults /tmp/capsid_growth;
