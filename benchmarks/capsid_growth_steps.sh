@@ -5,9 +5,9 @@
 # start=monomers), runs the implicit solvent (or SOLVENT) at the given attraction and sums the
 # scene's event tallies over seeds: a cluster of n that has n + 1 members at the next sample
 # grew, n - 1 shrank; P_n = grew / (grew + shrank) is the chance that a change of size is
-# growth. The same
-# trajectories are also tallied from every second sample (twice the interval): the probabilities
-# must not change when the interval is halved. Monomer runs use MONOMER_CAPSOMERS (more dimers).
+# growth. The same trajectories are also tallied from every second sample (twice the interval):
+# the probabilities must not change when the interval is halved. Monomer runs use
+# MONOMER_CAPSOMERS (more dimers).
 # usage: benchmarks/capsid_growth_steps.sh [OUT] [SIZES...]   (defaults /tmp/capsid_growth;
 #        sizes 1 2 3 4 6 8 12 16 20 25 30 35 40 45 50 55); E (0.09), SEEDS ("41 42"), STEPS
 #        (100000), SAMPLE (25 steps), CAPSOMERS (120), MONOMER_CAPSOMERS (300), SOLVENT
