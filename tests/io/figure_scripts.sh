@@ -42,7 +42,12 @@ PY
 "$exe" run vibrated-sawtooth --preset tiny --set steps=5000 --set sample_every=250 \
   --set slot_ends=walls --set seed=2 --set progress_interval=0 -o "$dir/vs2" >/dev/null
 "$scripts/plot_sawtooth_seeds" "$dir/vs/seeds.png" "$dir/vs" "$dir/vs2" >/dev/null
-for png in "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
+# capsid-assembly's mass fractions: the closed shell at e = 0.09 is all in the group of 60.
+"$exe" run capsid-assembly --preset tiny --set attraction=0.09 --set steps=400 --set sample_every=100 \
+  --set progress_interval=0 -o "$dir/cs" >/dev/null
+"$scripts/plot_capsid_mass_fractions" "$dir/cs/mass.png" "$dir/cs" >"$dir/cs/mass.txt"
+grep -q "60 1.000$" "$dir/cs/mass.txt" || { echo "FAIL: the shell's mass fractions: $(cat "$dir/cs/mass.txt")"; exit 1; }
+for png in "$dir/cs/mass.png" "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
            "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
            "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
