@@ -44,20 +44,26 @@ done
 /usr/bin/python3 - "$out" "$sizes" "$seeds" "$sample" <<'PY'
 import json, math, sys
 out, sizes, seeds, sample = sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), int(sys.argv[4])
-grew = {"fine": [0] * 60, "coarse": [0] * 60}
-shrank = {"fine": [0] * 60, "coarse": [0] * 60}
-seen = {"fine": [0] * 60, "coarse": [0] * 60}
+# Tallies by origin: the monomer runs (dimers formed by chance encounters) and the seeded runs
+# (whose small clusters are mostly the seed's fragments, their lost member still nearby);
+# "fine" every sample, "coarse" every second.
+def zero():
+    return {t: [0] * 60 for t in ("fine", "coarse")}
+grew = {"monomers": zero(), "seeded": zero(), "all": zero()}
+shrank = {"monomers": zero(), "seeded": zero(), "all": zero()}
+seen = {"monomers": zero(), "seeded": zero(), "all": zero()}
 wall = 0.0
 for n in sizes:
     for seed in seeds:
         s = json.load(open(f"{out}/n{n}_seed{seed}.json"))
         m = s["scene_measures"]
         wall += s["wall_seconds"]
-        for tally, suffix in (("fine", ""), ("coarse", "_coarse")):
-            for k in range(60):
-                grew[tally][k] += m["growth_events" + suffix][k]
-                shrank[tally][k] += m["loss_events" + suffix][k]
-                seen[tally][k] += m["clusters_seen" + suffix][k]
+        for origin in ("monomers" if n == "1" else "seeded", "all"):
+            for tally, suffix in (("fine", ""), ("coarse", "_coarse")):
+                for k in range(60):
+                    grew[origin][tally][k] += m["growth_events" + suffix][k]
+                    shrank[origin][tally][k] += m["loss_events" + suffix][k]
+                    seen[origin][tally][k] += m["clusters_seen" + suffix][k]
 
 def wilson(g, t):
     """P = g / t with its 95 % Wilson interval (exact enough for a few events; t = 0: none)."""
@@ -68,28 +74,43 @@ def wilson(g, t):
     half = z * math.sqrt(p * (1 - p) / t + z * z / (4 * t * t)) / (1 + z * z / t)
     return p, max(0.0, centre - half), min(1.0, centre + half)
 
-def row(label, lo, hi):
+tau = 0.005 * sample
+
+
+def row(label, lo, hi, origin="all"):
     cells = [label]
     for tally in ("fine", "coarse"):
-        g = sum(grew[tally][k - 1] for k in range(lo, hi + 1))
-        l = sum(shrank[tally][k - 1] for k in range(lo, hi + 1))
+        g = sum(grew[origin][tally][k - 1] for k in range(lo, hi + 1))
+        l = sum(shrank[origin][tally][k - 1] for k in range(lo, hi + 1))
         w = wilson(g, g + l)
         cells += [f"{g:.0f}", f"{l:.0f}", "-" if w is None else f"{w[0]:.3f} ({w[1]:.3f}-{w[2]:.3f})"]
+    # How often a cluster of these sizes changes size (the kinetics, to compare solvents).
+    seen_time = tau * sum(seen[origin]["fine"][k - 1] for k in range(lo, hi + 1))
+    changes = sum(grew[origin]["fine"][k - 1] + shrank[origin]["fine"][k - 1] for k in range(lo, hi + 1))
+    cells.append("-" if seen_time == 0 else f"{changes / seen_time:.3f}")
     print("| " + " | ".join(cells) + " |")
 
-tau = 0.005 * sample
+
 print(f"# growth events g, loss events l and P = g / (g + l) (95 % Wilson interval), tallied every "
       f"{sample} steps ({tau:g} tau) and every {2 * sample} ({2 * tau:g} tau) on the same runs; "
       f"total wall {wall:.0f} s")
-print(f"| size n | g ({tau:g} tau) | l | P | g ({2 * tau:g} tau) | l | P |")
-print("|---|---|---|---|---|---|---|")
-row("2 (dimer -> trimer)", 2, 2)
+print(f"| size n | g ({tau:g} tau) | l | P | g ({2 * tau:g} tau) | l | P | changes per cluster per tau |")
+print("|---|---|---|---|---|---|---|---|")
+row("2 (dimer -> trimer), from monomers", 2, 2, "monomers")
+row("2, in the seeded runs", 2, 2, "seeded")
 row("3 (trimer -> tetramer)", 3, 3)
 for lo, hi in ((4, 10), (11, 20), (21, 30), (31, 40), (41, 50), (51, 59)):
     row(f"{lo}-{hi}", lo, hi)
 row("4-50 (paper: ~0.6)", 4, 50)
-print("# per size (fine tally): n seen grew shrank")
+mono = {t: x["monomers"]["fine"] for t, x in (("g", grew), ("l", shrank), ("s", seen))}
+dimers = mono["g"][1] + mono["l"][1]
+if dimers:
+    print(f"# monomer runs: {mono['g'][0] / 2:.0f} dimers formed from two monomers (monomers that "
+          f"grew, / 2), {dimers:.0f} ended (grew or broke), mean dimer lifetime "
+          f"{tau * mono['s'][1] / dimers:.2f} tau (sampled time as a dimer / dimers ended)")
+print("# per size (fine tally, all runs): n seen grew shrank")
 for k in range(1, 60):
-    if grew["fine"][k] + shrank["fine"][k] > 0 or k + 1 in (2, 3):
-        print(f"# {k + 1} {seen['fine'][k]:.0f} {grew['fine'][k]:.0f} {shrank['fine'][k]:.0f}")
+    g, l = grew["all"]["fine"][k], shrank["all"]["fine"][k]
+    if g + l > 0 or k + 1 in (2, 3):
+        print(f"# {k + 1} {seen['all']['fine'][k]:.0f} {g:.0f} {l:.0f}")
 PY
