@@ -47,7 +47,12 @@ PY
   --set progress_interval=0 -o "$dir/cs" >/dev/null
 "$scripts/plot_capsid_mass_fractions" "$dir/cs/mass.png" "$dir/cs" >"$dir/cs/mass.txt"
 grep -q "60 1.000$" "$dir/cs/mass.txt" || { echo "FAIL: the shell's mass fractions: $(cat "$dir/cs/mass.txt")"; exit 1; }
-for png in "$dir/cs/mass.png" "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
+# Table 1 beside ours, from a committed log: e = 0.15 averages its two seeds' rows (monomers
+# 0.370 and 0.447; 2-5 plus 6-50: 0.630 and 0.553).
+"$scripts/plot_capsid_table1" "$dir/cs/table1.png" "$scripts/../benchmarks/logs/capsid_table1_2026-12-03.log" >"$dir/cs/table1.txt"
+grep -q "^e 0.15, 400000 steps, 2 seed(s): 1 0.408, 2-50 0.592, 51-59 0.000, 60 0.000$" "$dir/cs/table1.txt" \
+  || { echo "FAIL: Table 1's averages: $(cat "$dir/cs/table1.txt")"; exit 1; }
+for png in "$dir/cs/mass.png" "$dir/cs/table1.png" "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
            "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
            "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
