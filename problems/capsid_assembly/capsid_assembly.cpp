@@ -41,7 +41,22 @@ Capsomer design(const Config& c) {
     if (edge < 1)
         throw InputError(c.scene() + ": edge=" + c.text("edge") + " is below 1, the spheres' diameter "
                          "(0 takes the shape's own)");
-    return ph ? ph_capsomer(edge) : pw_capsomer(edge);
+    Capsomer d = ph ? ph_capsomer(edge) : pw_capsomer(edge);
+    // The sphere recipe keeps neighbours' spheres apart only on faces large enough for it:
+    // in the closed shell no two spheres of different capsomers may lie within the WCA range.
+    const std::vector<Quat> group = icosahedral_rotations();
+    double closest = 1e300;
+    for (std::size_t g = 1; g < group.size(); ++g)
+        for (const Vec3& a : d.spheres)
+            for (const Vec3& b : d.spheres) closest = std::min(closest, norm(a - rotate(group[g], b)));
+    if (d.spheres.empty() || closest < 1.122462048309373) {
+        std::ostringstream m;
+        m << c.scene() << ": edge=" << edge << " is too small for shape=" << c.text("shape")
+          << ": spheres of neighbouring capsomers in the closed shell come " << closest
+          << " apart, inside the WCA range 1.1225";
+        throw InputError(m.str());
+    }
+    return d;
 }
 
 class CapsidAssembly final : public Problem {
@@ -389,7 +404,8 @@ ProblemInfo capsid_assembly_info() {
                 "pw: truncated pyramid on a third of an icosahedron face (outer face a, a, a, 2a); "
                 "ph: on a face of the pentagonal hexecontahedron (the same bond network)")
         .real("edge", 0, 0, 10, "sigma",
-              "pw: the short edge a; ph: the long edge; 0: the shape's own (2.1, 3.6)")
+              "pw: the short edge a; ph: the long edge; 0: the shape's own (2.1, 3.6); refused "
+              "where spheres of neighbours in the shell would overlap (below ~1.9 for either)")
         .real("mass_ratio", 15, 0, 1e6, "m", "capsomer mass / solvent atom mass", true)
         .real("attraction", 0.09, 0, 10, "epsilon", "attraction strength e of the site pairs (eq. 6)")
         .real("attraction_range", 3, 0.5, 10, "sigma", "r_a: the attraction's range", true)
