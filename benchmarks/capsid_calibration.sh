@@ -20,8 +20,8 @@ case $jobs in ''|*[!0-9]*|0) echo "capsid_calibration.sh: JOBS='$jobs' must be a
 mkdir -p "$out"
 e_values=${E_VALUES:-"0.08 0.09 0.10 0.11"}
 seeds=${SEEDS:-"1 2 3"}
-echo "# capsid_calibration.sh $capsomers capsomers, $jobs jobs; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
-echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+echo "# capsid_calibration.sh $capsomers capsomers, $jobs jobs; $(run_stamp)"
+commit_line
 one() {
   local e=$1 seed=$2 dir="$out/e${1}_seed$2"
   [ -f "$dir/summary.json" ] && return 0

@@ -21,8 +21,8 @@ steps=${STEPS:-100000}
 sample=${SAMPLE:-500}
 sets=()
 for kv in ${SETS:-}; do sets+=(--set "$kv"); done
-echo "# capsid_completion.sh $e; steps $steps, sample every $sample; sets: ${SETS:-none}; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
-echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+echo "# capsid_completion.sh $e; steps $steps, sample every $sample; sets: ${SETS:-none}; $(run_stamp)"
+commit_line
 for seed in $seeds; do
   dir="$out/e${e}_seed$seed"
   [ -f "$dir/summary.json" ] && continue

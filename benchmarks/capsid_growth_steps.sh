@@ -27,8 +27,8 @@ capsomers=${CAPSOMERS:-120}
 monomer_capsomers=${MONOMER_CAPSOMERS:-300}
 solvent=${SOLVENT:-implicit}
 mkdir -p "$out"
-echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction 0.022, solvent $solvent; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
-echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction 0.022, solvent $solvent; $(run_stamp)"
+commit_line
 for n in $sizes; do
   for seed in $seeds; do
     file="$out/n${n}_seed$seed.json"

@@ -17,8 +17,8 @@ seeds=${SEEDS:-"5 6 7 8"}
 extra=()
 [ -n "$e" ] && extra+=(--set attraction="$e")
 [ -n "${STEPS:-}" ] && extra+=(--set steps="$STEPS")
-echo "# capsid_hysteresis.sh ${e:-(preset attraction)} ${STEPS:-(preset steps)}; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
-echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+echo "# capsid_hysteresis.sh ${e:-(preset attraction)} ${STEPS:-(preset steps)}; $(run_stamp)"
+commit_line
 for seed in $seeds; do
   for start in shell open_shell; do
     dir="$out/${start}_seed$seed"

@@ -19,8 +19,8 @@ steps=${STEPS:-400000}
 capsomers=${CAPSOMERS:-300}
 solvent=${SOLVENT:-implicit}
 mkdir -p "$out"
-echo "# capsid_table1.sh: e $energies; seeds $seeds; $steps steps; $capsomers capsomers, particle_fraction 0.033, solvent $solvent; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
-echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+echo "# capsid_table1.sh: e $energies; seeds $seeds; $steps steps; $capsomers capsomers, particle_fraction 0.033, solvent $solvent; $(run_stamp)"
+commit_line
 for e in $energies; do
   for seed in $seeds; do
     dir="$out/e${e}_seed$seed"

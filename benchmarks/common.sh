@@ -42,6 +42,13 @@ rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
 # min_max FILE: "min-max" of the numbers in FILE.
 min_max() { sort -g "$1" | awk 'NR==1 {lo=$1} {hi=$1} END {printf "%.2f-%.2f", lo, hi}'; }
 
+# run_stamp: when and where a run-length benchmark ran ("<UTC time>; <cores> cores, <CPU>");
+# commit_line: "# commit <hash>", marked when the engine's sources differ from it.
+run_stamp() { echo "$(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"; }
+commit_line() {
+  echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+}
+
 # build_header: what a benchmark log records of the machine and both programs' builds.
 build_header() {
   echo "# machine: $(getconf _NPROCESSORS_ONLN) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1), $(free -g | awk '/Mem:/ {print $2}') GiB; $(date -u +%FT%TZ)"

@@ -28,9 +28,9 @@ runs=()
 for G in 1.0 1.1 1.26 1.5 2.0; do runs+=("gamma_$G:amplitude=$(amplitude "$G")"); done
 for g in 0.5 0.7 0.85; do runs+=("gentle_$g:gentle_fraction=$g"); done
 for d in 3 12; do runs+=("depth_$d:depth=$d"); done
-echo "# sawtooth_flux_map.sh $cycles cycles, $ranks ranks; $(date -u +%FT%TZ); $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1)"
+echo "# sawtooth_flux_map.sh $cycles cycles, $ranks ranks; $(run_stamp)"
 echo "# every run also: ${FLUX_MAP_SET:-(nothing)}"
-echo "# commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems || echo ' (modified)')"
+commit_line
 for r in "${runs[@]}"; do
   name=${r%%:*} setting=${r#*:}
   [ -f "$out/$name.json" ] && continue  # a stopped map continues where it was
