@@ -109,6 +109,28 @@ double engine_energy(const Capsomer& c, const std::vector<Pose>& poses, double e
     return t.potential * double(t.n);
 }
 
+/// Particle 0 of the closed shell against the other 59: how many of its sites coincide with
+/// their partner (distance < 1e-9), the closest partner site that does not, and the closest
+/// sphere of another particle.
+struct ShellContacts {
+    int coincident = 0;
+    double closest_other = 1e300, closest_sphere = 1e300;
+};
+ShellContacts shell_contacts(const Capsomer& c) {
+    const std::vector<Quat> g = icosahedral_rotations();
+    ShellContacts r;
+    for (std::size_t a = 1; a < g.size(); ++a) {
+        for (std::size_t i = 0; i < c.sites.size(); ++i) {
+            const double d = norm(c.sites[i] - rotate(g[a], c.sites[std::size_t(c.partner[i])]));
+            if (d < 1e-9) ++r.coincident;
+            else r.closest_other = std::min(r.closest_other, d);
+        }
+        for (const Vec3& p : c.spheres)
+            for (const Vec3& q : c.spheres) r.closest_sphere = std::min(r.closest_sphere, norm(p - rotate(g[a], q)));
+    }
+    return r;
+}
+
 }  // namespace
 
 TEST(Capsomer, IcosahedralGroup) {
@@ -136,24 +158,13 @@ TEST(Capsomer, ShellGeometry) {
     EXPECT_NEAR(c.face_distance, 4.761296, 1e-6);  // the note's R_f
     ASSERT_EQ(c.sites.size(), 20u);
     ASSERT_EQ(c.faces.size(), 5u);
-    const std::vector<Quat> g = icosahedral_rotations();
     // Every site of every particle meets exactly one partner site of another particle at
     // distance 0 (600 pairs), and no other partner comes within the bond range.
-    int coincident = 0;
-    double closest_other = 1e300, closest_sphere = 1e300;
-    for (std::size_t a = 1; a < 60; ++a)
-        for (std::size_t i = 0; i < 20; ++i) {
-            const double r = norm(c.sites[i] - rotate(g[a], c.sites[std::size_t(c.partner[i])]));
-            if (r < 1e-9) ++coincident;
-            else closest_other = std::min(closest_other, r);
-        }
+    const auto [coincident, closest_other, closest_sphere] = shell_contacts(c);
     // Particle 0's 20 sites, each meeting one partner: with the 60 symmetric copies, 600
     // coincident site pairs in the shell (each pair counted from both ends).
     EXPECT_EQ(coincident, 20);
     EXPECT_GT(closest_other, 0.5);  // the bond range r_b
-    for (std::size_t a = 1; a < 60; ++a)
-        for (const Vec3& p : c.spheres)
-            for (const Vec3& q : c.spheres) closest_sphere = std::min(closest_sphere, norm(p - rotate(g[a], q)));
     // Spheres of different particles never overlap in the shell: beyond the WCA range.
     EXPECT_GT(closest_sphere, 1.122462048309373);
     // Within a particle no gap lets a solvent atom (diameter 1) in: neighbours < 0.55 apart.
@@ -282,20 +293,9 @@ TEST(Capsomer, PentagonalHexecontahedronDesign) {
     normal *= 1 / norm(normal);
     for (const Vec3& v : c.outer_face) EXPECT_NEAR(std::fabs(dot(normal, v)), c.face_distance, 1e-9);
     ASSERT_EQ(c.sites.size(), 20u);
-    const std::vector<Quat> g = icosahedral_rotations();
-    int coincident = 0;
-    double closest_other = 1e300, closest_sphere = 1e300;
-    for (std::size_t a = 1; a < 60; ++a)
-        for (std::size_t i = 0; i < 20; ++i) {
-            const double r = norm(c.sites[i] - rotate(g[a], c.sites[std::size_t(c.partner[i])]));
-            if (r < 1e-9) ++coincident;
-            else closest_other = std::min(closest_other, r);
-        }
+    const auto [coincident, closest_other, closest_sphere] = shell_contacts(c);
     EXPECT_EQ(coincident, 20);
     EXPECT_GT(closest_other, 0.5);
-    for (std::size_t a = 1; a < 60; ++a)
-        for (const Vec3& p : c.spheres)
-            for (const Vec3& q : c.spheres) closest_sphere = std::min(closest_sphere, norm(p - rotate(g[a], q)));
     // The note: spheres of different particles at least 1.140 apart (2 x the inset 0.57).
     EXPECT_NEAR(closest_sphere, 1.140, 0.0005);
     // The note's count, 18 + 14. Each layer (0.5 and 1.2 below the face, inset 0.57 from the
