@@ -3,7 +3,6 @@
 // sites on its lateral faces, shaped so that 60 of them tile a closed icosahedral shell.
 #pragma once
 
-#include <string>
 #include <vector>
 
 #include "emergent/quaternion.hpp"
@@ -20,7 +19,6 @@ namespace emergent {
 /// the short leg, the top, the leg) meet five neighbours (5-fold +-72 deg, 3-fold +-120 deg,
 /// 2-fold 180 deg). Bond network: the pentagonal hexecontahedron's (150 bonds, 5 per particle).
 struct Capsomer {
-    std::string shape = "pw";   ///< "pw" or "ph"
     double edge = 2.1;          ///< PW: the short edge a; PH: the long edge
     double face_distance = 0;   ///< distance of the outer face from the shell's centre
     /// The outer face's corners, V0 on a 5-fold axis (PW: the trapezoid V0..V3; PH: the

@@ -176,7 +176,6 @@ double edge_spread(const std::vector<Quat>& group, const Vec3& d) {
 Capsomer pw_capsomer(double edge) {
     if (!(edge > 0)) throw std::invalid_argument("pw_capsomer: edge must be > 0");
     Capsomer c;
-    c.shape = "pw";
     c.edge = edge;
     const double phi = 0.5 * (1 + std::sqrt(5.0)), s = 1.5 * edge;  // icosahedron edge 3a
     const Vec3 A = s * Vec3{0, 1, phi}, B = s * Vec3{phi, 0, 1}, C = s * Vec3{1, phi, 0};
@@ -274,7 +273,6 @@ Capsomer ph_capsomer(double long_edge) {
         break;
     }
     if (c.outer_face.size() != 5) throw std::logic_error("ph_capsomer: the face does not reach the shell frame");
-    c.shape = "ph";
     c.edge = long_edge;
     const std::vector<Vec3>& V = c.outer_face;
     // Both long edges meet at the 5-fold corner (5-fold contacts, measured from it as in PW);
