@@ -53,7 +53,8 @@ echo "ok: a movie of 11 frames"
 # (tests/support/state_check.py, under pvbatch: times, points, what is shown).
 state_check() {  # RUN VIEW; one more try as in scripts/render (xvfb-run -a's display pick)
   local state
-  state=$("$root/scripts/replay" "$dir/$1" --state-only)
+  state=$("$root/scripts/replay" "$dir/$1" --state-only) ||
+    { grep -v '^ *[0-9]* *0x' "$dir/$1/render/$2.log" | tail -n 30; exit 1; }
   [ "$state" = "$(cd "$dir/$1" && pwd)/render/$2.pvsm" ] || { echo "FAIL: replay wrote '$state'"; exit 1; }
   xvfb-run -a -n $((100 + RANDOM % 5000)) pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" 2>&1 | tail -n 1 | grep '^ok' ||
     { sleep 2; xvfb-run -a -n $((100 + RANDOM % 5000)) pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" 2>&1 | tail -n 1 | grep '^ok'; } ||
