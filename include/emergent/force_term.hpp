@@ -7,7 +7,6 @@
 #include <memory>
 #include <string>
 #include <utility>
-
 #include <vector>
 
 #include "emergent/backend_particles.hpp"
@@ -47,6 +46,13 @@ public:
     virtual std::string name() const = 0;
     /// Largest pair distance the term needs listed (0 for terms without pairs).
     virtual double cutoff() const = 0;
+    /// The range by species pair, where it differs from cutoff(): n x n entries (row i, column
+    /// j: the distance beyond which the force between species i and j is zero; 0 where they
+    /// never interact) for species 0 .. n - 1; pairs with a species from n on meet at
+    /// cutoff(). Empty (the default): cutoff() for every pair. The neighbour list keeps a pair
+    /// only within the largest range any term gives it (plus the skin): in a solvent of short
+    /// range around long-ranged sites, most pairs.
+    virtual std::vector<double> pair_ranges() const { return {}; }
     /// False when the term dissipates or injects energy (damping, friction, moving walls): the
     /// total energy is then not conserved and the drift guard does not apply.
     virtual bool conservative() const { return true; }

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include "decomposition/exact_sum.hpp"
 #include "decomposition/halo_exchange.hpp"
@@ -138,9 +139,11 @@ struct Simulation::Engine {
     /// members may sync.
     ParticleStore& host_store() const { return const_cast<ParticleStore&>(store); }
     /// Per-species masses where the back end's loops read them.
-    const double* masses() const { return mirror ? mirror->table(0, mass) : mass.data(); }
+    /// The mirror's table slots: masses, inverse masses, the list's ranges by species pair.
+    enum Table : std::size_t { kMassTable, kInverseMassTable, kPairRangeTable };
+    const double* masses() const { return mirror ? mirror->table(kMassTable, mass) : mass.data(); }
     const double* inverse_masses() const {
-        return mirror ? mirror->table(1, inverse_mass) : inverse_mass.data();
+        return mirror ? mirror->table(kInverseMassTable, inverse_mass) : inverse_mass.data();
     }
     /// The array of `field` the back end's loops work on.
     template <class T>
@@ -214,6 +217,7 @@ struct Simulation::Engine {
         double cutoff = 0;
         for (const auto& term : forces) cutoff = std::max(cutoff, term->cutoff());
         list = NeighbourList(cutoff, settings.skin);
+        set_pair_ranges(cutoff);
         grid->require_width(ghost_width());
         cells.setup(grid->lo(), grid->hi(), ghost_width(), list.list_cutoff(),
                     settings.cell_subdivisions);
@@ -228,6 +232,31 @@ struct Simulation::Engine {
         if (particle_fields & kDiameter) store.enable_diameters();  // contacts read them
         store.fit_capacity();
         choose_list_layout();
+    }
+
+    /// The terms' ranges by species pair, the largest for each pair (symmetric, at most the
+    /// cutoff), set on the list where some pair's is shorter than the cutoff.
+    void set_pair_ranges(double cutoff) {
+        std::size_t n = 0;
+        for (const auto& term : forces) {
+            const std::size_t size = term->pair_ranges().size(),
+                              m = static_cast<std::size_t>(std::llround(std::sqrt(double(size))));
+            if (m * m != size) throw std::logic_error("force term '" + term->name() + "': pair_ranges() is not n x n");
+            n = std::max(n, m);
+        }
+        if (n == 0) return;
+        std::vector<double> range(n * n, 0.0);
+        for (const auto& term : forces) {
+            const std::vector<double> own = term->pair_ranges();
+            const std::size_t m = static_cast<std::size_t>(std::llround(std::sqrt(double(own.size()))));
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t j = 0; j < n; ++j) {
+                    const double r = i < m && j < m ? std::max(own[i * m + j], own[j * m + i]) : term->cutoff();
+                    range[i * n + j] = std::max(range[i * n + j], std::min(r, cutoff));
+                }
+        }
+        if (std::all_of(range.begin(), range.end(), [&](double r) { return r >= cutoff; })) return;
+        list.set_pair_ranges(range, static_cast<int>(n));
     }
 
     void choose_list_layout() {
@@ -324,6 +353,9 @@ struct Simulation::Engine {
                 body_tables = {&rigid,           body_mirror.get(),        &host_bodies(),
                                frames_on_backend, frame_species_on_backend, frame_diameters_on_backend,
                                kBodyFields};
+            const int n_species = list.n_range_species();
+            backend_build.set_pair_ranges(n_species ? mirror->table(kPairRangeTable, list.range_table()) : nullptr,
+                                          n_species);
             if (backend_build.build(target, *mirror, store, *grid, cells, ghost_width(), list.list_cutoff(),
                                     halo, backend_halo, bodies() ? &body_tables : nullptr)) {
                 if (!backend_build.fault().empty()) throw InstabilityError(backend_build.fault());

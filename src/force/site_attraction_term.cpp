@@ -13,14 +13,30 @@ namespace emergent {
 
 namespace {
 
+constexpr double kWcaRange = 1.122462048309373;  // 2^(1/6), sigma = 1
+
 class SpheresAndSitesTerm final : public ForceTerm {
 public:
     SpheresAndSitesTerm(const SiteAttraction& s, const force::SphereSiteLaw& law)
         : settings_(s), law_(law) {}
 
     std::string name() const override { return "spheres-and-sites"; }
-    double cutoff() const override { return std::max(settings_.range, 1.122462048309373); }
+    double cutoff() const override { return std::max(settings_.range, kWcaRange); }
     unsigned ghost_fields() const override { return kPosition | kSpecies; }
+    /// Volume meets volume within the WCA range, a site its partner within the attraction's;
+    /// volume and sites, and sites that are not partners, never meet.
+    std::vector<double> pair_ranges() const override {
+        const int n = law_.first_site + law_.n_site_types;
+        std::vector<double> r(std::size_t(n) * std::size_t(n), 0.0);
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < n; ++j) {
+                const int kind = law_.kind(i, j);
+                r[std::size_t(i * n + j)] = kind == force::SphereSiteLaw::kRepulsion ? kWcaRange
+                                            : kind == force::SphereSiteLaw::kAttraction ? settings_.range
+                                                                                        : 0.0;
+            }
+        return r;
+    }
 
     void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext&, bool sample,
                     ForceSums& sums) const override {

@@ -412,6 +412,13 @@ void BackendListBuild::list(const exec::Target& target, exec::ParticleMirror& mi
     const std::int64_t* body = store.has_rigid_fields() ? mirror.array<std::int64_t>(kBody) : nullptr;
     std::uint32_t* offset = buffer(mirror, kOffsets, n_owned + 1);
     build::ListNeighbours search{x, body, grid, start, member, list_range * list_range, n_owned, nullptr, offset};
+    if (range_table_) {
+        search.range_table = range_table_;
+        search.species = mirror.array<int>(kSpecies);
+        search.n_species = static_cast<unsigned>(n_range_species_);
+        search.short_reach =
+            exec::transform_max(target, n, 0.0, build::SpeciesOutside{search.species, n_range_species_}) == 0.0;
+    }
     exec::for_each(target, n_owned + 1, search);
     n_pairs_ = exec::exclusive_scan(target, offset, offset, n_owned + 1);
     std::uint32_t* neighbours = buffer(mirror, kNeighbours, n_pairs_);

@@ -54,6 +54,13 @@ public:
                double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo,
                const Bodies* bodies = nullptr);
 
+    /// Ranges by species for the builds that follow (NeighbourList::range_table of n species,
+    /// already on the back end); null: every pair within the list range.
+    void set_pair_ranges(const double* range_table_on_backend, int n_species) {
+        range_table_ = range_table_on_backend;
+        n_range_species_ = range_table_on_backend ? n_species : 0;
+    }
+
     /// The first particle that could not be brought home (of the first rank with one),
     /// described as the host's migration does; empty if none.
     const std::string& fault() const { return fault_; }
@@ -144,6 +151,8 @@ private:
                                 kConstituentFirst, kConstituentIndex, kNewOfOld, kSwapIndex0 };  // then one per swap (up to 8)
 
     std::size_t slot_;
+    const double* range_table_ = nullptr;
+    int n_range_species_ = 0;
     std::string fault_;
     const std::uint32_t *offsets_ = nullptr, *neighbours_ = nullptr;
     std::size_t n_pairs_ = 0;

@@ -354,10 +354,18 @@ struct CellStart {
     }
 };
 
+/// 1 where particle i's species has no row in a table of n species (0 otherwise): with none,
+/// searches may stop at their species' range (ListNeighbours::short_reach).
+struct SpeciesOutside {
+    const int* species;
+    int n;
+    EMERGENT_HD double operator()(std::size_t i) const { return species[i] < 0 || species[i] >= n ? 1.0 : 0.0; }
+};
+
 /// Full list of owned particle i: every j != i (owned or ghost, not of i's body) within the
-/// list range, cells visited z, y, x outermost first and members in index order: the host's
-/// NeighbourList::build_full order. Counting pass (offset null): out[i] = the count, and
-/// out[n_owned] = 0 for the scan. Listing pass: j's from out[offset[i]] on.
+/// list range (or its species pair's), cells visited z, y, x outermost first and members in
+/// index order: the host's NeighbourList::build_full order. Counting pass (offset null):
+/// out[i] = the count, and out[n_owned] = 0 for the scan. Listing pass: j's from out[offset[i]] on.
 struct ListNeighbours {
     const Vec3* x;
     const std::int64_t* body;  ///< null: no bodies
@@ -368,23 +376,37 @@ struct ListNeighbours {
     std::size_t n_owned;
     const std::uint32_t* offset;
     std::uint32_t* out;
+    /// Ranges by species (NeighbourList::range_table, on the back end); null: none.
+    /// `short_reach`: every species has its row, so a search stops at its species' range.
+    const double* range_table = nullptr;
+    const int* species = nullptr;
+    unsigned n_species = 0;
+    bool short_reach = false;
     EMERGENT_HD void operator()(std::size_t i) const {
         if (i == n_owned) {
             if (!offset) out[i] = 0;
             return;
         }
         const Vec3 xi = x[i];
+        const unsigned si = range_table ? static_cast<unsigned>(species[i]) : 0;
         std::uint32_t count = 0;
         auto consider = [&](std::uint32_t j) {
             if (j == i) return;
             if (body && body[i] >= 0 && body[i] == body[j]) return;  // same body
             const Vec3 r = xi - x[j];
-            if (dot(r, r) < range_sq) {
+            Real limit = range_sq;
+            if (range_table) {
+                const unsigned sj = static_cast<unsigned>(species[j]);
+                if (si < n_species && sj < n_species) limit = Real(range_table[si * n_species + sj]);
+            }
+            if (dot(r, r) < limit) {
                 if (offset) out[offset[i] + count] = j;
                 ++count;
             }
         };
-        cells.visit_nearby(xi, start, member, consider);
+        const bool short_search = short_reach && si < n_species;
+        cells.visit_within(xi, short_search ? cells.reach_of(range_table[n_species * n_species + si]) : cells.reach,
+                           start, member, consider);
         if (!offset) out[i] = count;
     }
 };

@@ -2,6 +2,7 @@
 // Half Verlet list from a cell list.
 #include "neighbour_list.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -12,6 +13,27 @@
 
 namespace emergent {
 
+void NeighbourList::set_pair_ranges(const std::vector<double>& range, int n_species) {
+    if (n_species < 0 || range.size() != std::size_t(n_species) * std::size_t(n_species))
+        throw std::logic_error("NeighbourList::set_pair_ranges: the table is not n x n");
+    const std::size_t n = std::size_t(n_species);
+    n_range_species_ = n_species;
+    range_table_.assign(n * n + n, 0.0);
+    for (std::size_t k = 0; k < n * n; ++k) {
+        const double r = range[k] > 0 ? range[k] + skin_ : 0.0;
+        range_table_[k] = r > 0 ? r * r : -1.0;
+        range_table_[n * n + k / n] = std::max(range_table_[n * n + k / n], r);
+    }
+}
+
+/// Whether every particle's species (owned and ghost) has its row in the table: only then may
+/// a search from a particle stop at its species' longest range (a pair with an undescribed
+/// species is listed within the whole range, from either member).
+static bool species_described(const ParticleStore& store, int n_species) {
+    return std::all_of(store.species.begin(), store.species.begin() + std::ptrdiff_t(store.size()),
+                       [&](int s) { return s >= 0 && s < n_species; });
+}
+
 void NeighbourList::build_full(const ParticleStore& store, const CellList& cells) {
     build_general(store, cells, true);
 }
@@ -21,17 +43,30 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
     const double r2max = list_cutoff() * list_cutoff();
     const Vec3* x = store.position.data();
     const std::int64_t* body = store.has_rigid_fields() ? store.body.data() : nullptr;
+    const unsigned n_species = static_cast<unsigned>(n_range_species_);
+    const int* species = n_species ? store.species.data() : nullptr;
+    const double* pair_range_sq = range_table_.data();
     offset_.assign(n_owned + 1, 0);
     neighbour_.clear();
     const CellIndex& grid = cells.index();
+    // The reach of a search from each species (or the grid's, for all).
+    std::vector<Int3> reach(n_species, grid.reach);
+    if (species && species_described(store, n_range_species_))
+        for (unsigned s = 0; s < n_species; ++s) reach[s] = grid.reach_of(range_table_[n_species * n_species + s]);
     for (std::size_t i = 0; i < n_owned; ++i) {
+        const unsigned si = species ? static_cast<unsigned>(species[i]) : 0;
         auto consider = [&](std::uint32_t j) {
             if (full ? j == i : j <= i) return;
             if (body && body[i] >= 0 && body[i] == body[j]) return;  // same body
             const Vec3 r = x[i] - x[j];
-            if (dot(r, r) < r2max) neighbour_.push_back(j);
+            double limit = r2max;
+            if (species) {
+                const unsigned sj = static_cast<unsigned>(species[j]);
+                if (si < n_species && sj < n_species) limit = pair_range_sq[si * n_species + sj];
+            }
+            if (dot(r, r) < limit) neighbour_.push_back(j);
         };
-        grid.visit_nearby(x[i], cells.starts(), cells.members(), consider);
+        grid.visit_within(x[i], si < n_species ? reach[si] : grid.reach, cells.starts(), cells.members(), consider);
         offset_[i + 1] = static_cast<std::uint32_t>(neighbour_.size());
     }
     n_pairs_ = neighbour_.size();
@@ -79,6 +114,14 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     const BinnedPoint* xb = cells.binned_positions();
     const double padded = list_cutoff() + cells.binned_distance_error();
     const float r2f = std::nextafter(static_cast<float>(padded * padded), 1e30f);
+    const unsigned n_species = static_cast<unsigned>(n_range_species_);
+    const int* species = n_species ? store.species.data() : nullptr;
+    std::vector<float> pair_r2f(std::size_t(n_species) * n_species, -1.0f);
+    for (std::size_t k = 0; k < pair_r2f.size(); ++k)
+        if (range_table_[k] > 0) {
+            const double r = std::sqrt(range_table_[k]) + cells.binned_distance_error();
+            pair_r2f[k] = std::nextafter(static_cast<float>(r * r), 1e30f);
+        }
     // Stencil: the cells within reach as offsets of the linear index, in increasing order, so
     // that neighbouring cells of one row (consecutive indices, consecutive slots) merge into
     // one range below. Inner cells always have all of them: the grid's ghost shell is at least
@@ -152,9 +195,25 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
             out[count] = member[b];
             count += (dx * dx + dy * dy + dz * dz < r2f) ? 1 : 0;
         };
-        for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);
-        for (int r = 0; r < n_ranges; ++r)
-            for (std::uint32_t b = range_begin[r]; b < range_end[r]; ++b) consider(b);
+        // With ranges by species: the pair's own, widened as the whole range is.
+        const unsigned si = species ? static_cast<unsigned>(species[i]) : 0;
+        auto consider_by_species = [&](std::uint32_t b) {
+            const float dx = xi.x - xb[b].x, dy = xi.y - xb[b].y, dz = xi.z - xb[b].z;
+            const std::uint32_t j = member[b];
+            const unsigned sj = static_cast<unsigned>(species[j]);
+            out[count] = j;
+            const float limit = si < n_species && sj < n_species ? pair_r2f[si * n_species + sj] : r2f;
+            count += (dx * dx + dy * dy + dz * dz < limit) ? 1 : 0;
+        };
+        if (species) {
+            for (std::uint32_t b = a + 1; b < own_end; ++b) consider_by_species(b);
+            for (int r = 0; r < n_ranges; ++r)
+                for (std::uint32_t b = range_begin[r]; b < range_end[r]; ++b) consider_by_species(b);
+        } else {
+            for (std::uint32_t b = a + 1; b < own_end; ++b) consider(b);
+            for (int r = 0; r < n_ranges; ++r)
+                for (std::uint32_t b = range_begin[r]; b < range_end[r]; ++b) consider(b);
+        }
         offset_[i + 1] = static_cast<std::uint32_t>(count);
     }
     n_pairs_ = count;

@@ -25,8 +25,9 @@ struct SquaredDisplacement {
 /// Half neighbour list over owned particles: each pair is listed once, under one of its two
 /// particles (under the one in the earlier cell or slot; the general search: under i < j).
 /// Every owned–ghost pair is listed under its owned member; the rank owning the ghost lists the mirror pair, so no forces need to be
-/// sent back. Pairs closer than cutoff + skin at build time are listed; the list stays valid
-/// while no particle has moved more than skin/2.
+/// sent back. Pairs closer than cutoff + skin at build time are listed (or than their species
+/// pair's range + skin: set_pair_ranges); the list stays valid while no particle has moved more
+/// than skin/2.
 class NeighbourList {
 public:
     NeighbourList() = default;
@@ -35,6 +36,17 @@ public:
     double cutoff() const { return cutoff_; }
     double skin() const { return skin_; }
     double list_cutoff() const { return cutoff_ + skin_; }
+
+    /// Ranges by species pair (ForceTerm::pair_ranges, the largest over the terms): `range`
+    /// holds n x n entries, 0 where the pair never interacts. A pair is then listed only within
+    /// its own range plus the skin; pairs with a species from n on within the cutoff's. An
+    /// empty table: every pair within cutoff + skin.
+    void set_pair_ranges(const std::vector<double>& range, int n_species);
+    /// The list's ranges by species (n = n_range_species(); empty without ranges by species):
+    /// n x n squared ranges by pair (row-major; -1 where never listed), then n ranges, the
+    /// longest of each species (a search from it reaches no further).
+    const std::vector<double>& range_table() const { return range_table_; }
+    int n_range_species() const { return n_range_species_; }
 
     /// Builds from positions of owned particles and ghosts binned in `cells`.
     /// `owned_outside_domain`: owned particles may sit outside the domain (constituents of
@@ -71,6 +83,8 @@ private:
     void keep_reference(const ParticleStore& store, std::size_t n_owned);
 
     double cutoff_ = 0, skin_ = 0;
+    std::vector<double> range_table_;
+    int n_range_species_ = 0;
     std::size_t n_pairs_ = 0;
     std::vector<std::uint32_t> offset_, neighbour_;
     struct Place {

@@ -10,9 +10,12 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <set>
+#include <utility>
 
 #include "emergent/capsomer.hpp"
+#include "emergent/force_term.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
 #include "emergent/site_bonds.hpp"
@@ -342,4 +345,109 @@ TEST(Capsomer, PentagonalHexecontahedronDesign) {
     EXPECT_NEAR(engine_energy(c, poses, kE), direct, 1e-9 * std::fabs(direct));
     std::printf("PH: %zu spheres, closest non-bonded partner %.3f, shell energy %.2f at e = %.2f\n",
                 c.spheres.size(), closest_other, direct, kE);
+}
+
+namespace {
+
+/// The spheres-and-sites term without its ranges by species (ForceTerm::pair_ranges): the
+/// neighbour list then keeps every pair within the cutoff, as before ranges by species.
+class WholeRange final : public ForceTerm {
+public:
+    explicit WholeRange(std::unique_ptr<ForceTerm> term) : term_(std::move(term)) {}
+    std::string name() const override { return term_->name(); }
+    double cutoff() const override { return term_->cutoff(); }
+    bool conservative() const override { return term_->conservative(); }
+    unsigned ghost_fields() const override { return term_->ghost_fields(); }
+    unsigned particle_fields() const override { return term_->particle_fields(); }
+    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& c, bool sample,
+                    ForceSums& sums) const override {
+        term_->add_forces(s, list, c, sample, sums);
+    }
+    bool honours_range() const override { return term_->honours_range(); }
+    bool on_backend() const override { return term_->on_backend(); }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext& c, bool sample,
+                               ForceSums& sums) const override {
+        term_->add_forces_on_backend(p, c, sample, sums);
+    }
+
+private:
+    std::unique_ptr<ForceTerm> term_;
+};
+
+/// A closed shell at e = 0.09 and four monomers in a solvent of free volume spheres, after
+/// `steps` steps on `backend` with `layout`: every position by id, and the rebuilds.
+std::pair<std::map<std::int64_t, Vec3>, long long> shell_in_solvent(bool by_species, Backend backend,
+                                                                    ListLayout layout, int steps) {
+    const Capsomer c = pw_capsomer();
+    RunSettings rs;
+    rs.backend = backend;
+    rs.list_layout = layout;
+    Simulation sim(MPI_COMM_WORLD, rs);
+    sim.set_box(big_box());
+    std::vector<double> masses{1.0};
+    masses.resize(kFirstSite + c.sites.size(), 0.0);
+    sim.set_species_masses(masses);
+    SiteAttraction a;
+    a.first_site = kFirstSite;
+    a.partner = c.partner;
+    a.epsilon = kE;
+    std::unique_ptr<ForceTerm> term = make_soft_spheres_and_sites(a);
+    sim.add_force(by_species ? std::move(term) : std::make_unique<WholeRange>(std::move(term)));
+    std::vector<Vec3> x = c.spheres;
+    x.insert(x.end(), c.sites.begin(), c.sites.end());
+    std::vector<int> sp(c.spheres.size(), 0);
+    std::vector<double> d(c.spheres.size(), 1.0);
+    for (std::size_t k = 0; k < c.sites.size(); ++k) sp.push_back(kFirstSite + int(k)), d.push_back(0.0);
+    const int kind = sim.add_body_kind(x, sp, d);
+    Vec3 centre{0, 0, 0};
+    for (const Vec3& s : c.spheres) centre += s;
+    centre *= 1.0 / double(c.spheres.size());
+    const std::int64_t per = std::int64_t(x.size());
+    std::vector<Pose> poses = shell({Quat{1, 0, 0, 0}, {20, 20, 20}});
+    for (int m = 0; m < 4; ++m) poses.push_back({Quat{1, 0, 0, 0}, Vec3{6.0 + 28.0 * (m % 2), 6.0 + 28.0 * (m / 2), 6.0}});
+    for (std::size_t b = 0; b < poses.size(); ++b)
+        sim.add_body(kind, rotate(poses[b].q, centre) + poses[b].shift, poses[b].q,
+                     0.2 * Vec3{gaussian(3, b, 0), gaussian(3, b, 1), gaussian(3, b, 2)}, {0, 0, 0}, std::int64_t(b),
+                     std::int64_t(b) * per);
+    // Solvent on a lattice of spacing 2, clear of the shell (outer radius < 7) and the monomers.
+    std::int64_t id = std::int64_t(poses.size()) * per;
+    for (int i = 0; i < 20; ++i)
+        for (int j = 0; j < 20; ++j)
+            for (int k = 0; k < 20; ++k) {
+                const Vec3 p{1.0 + 2 * i, 1.0 + 2 * j, 1.0 + 2 * k};
+                bool clear = norm(p - Vec3{20, 20, 20}) > 9;
+                for (std::size_t b = 60; b < poses.size(); ++b) clear = clear && norm(p - poses[b].shift) > 5;
+                if (!clear) continue;
+                sim.add_particle(p, {gaussian(5, id, 0), gaussian(5, id, 1), gaussian(5, id, 2)}, 0, id);
+                ++id;
+            }
+    sim.initialise();
+    for (int s = 0; s < steps; ++s) sim.step(s + 1 == steps);
+    std::map<std::int64_t, Vec3> at;
+    const ParticleStore& p = sim.particles();
+    for (std::size_t i = 0; i < p.n_owned(); ++i) at[p.id[i]] = p.position[i];
+    return {at, sim.rebuilds()};
+}
+
+}  // namespace
+
+TEST(Capsomer, ListBySpeciesRangeChangesNoBit) {
+    // A pair the list leaves out by its species' range (solvent beyond the WCA range, a sphere
+    // and a site, sites that are not partners) adds an exact zero to every force: the run is
+    // the same, bit for bit, as with every pair listed to the attraction's range, on the host's
+    // half list and on the back end's full list (the checking back end runs its loops).
+    for (const auto& [backend, layout] : {std::pair{Backend::Host, ListLayout::Half},
+                                          std::pair{Backend::Checking, ListLayout::Full}}) {
+        const auto [whole, whole_rebuilds] = shell_in_solvent(false, backend, layout, 300);
+        const auto [short_, short_rebuilds] = shell_in_solvent(true, backend, layout, 300);
+        EXPECT_GE(whole_rebuilds, 5);  // several lists built on the way
+        EXPECT_EQ(short_rebuilds, whole_rebuilds);
+        ASSERT_EQ(short_.size(), whole.size());
+        int differ = 0;
+        for (const auto& [id, x] : whole) {
+            const Vec3& y = short_.at(id);
+            differ += (x.x != y.x || x.y != y.y || x.z != y.z) ? 1 : 0;
+        }
+        EXPECT_EQ(differ, 0) << "of " << whole.size() << " particles";
+    }
 }

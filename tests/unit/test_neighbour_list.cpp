@@ -23,9 +23,14 @@ namespace {
 /// `reversed`: the owned particles in descending cell order, not the engine's ascending one
 /// (the engine may also put some first: Simulation's halo overlap); the search is geometric,
 /// so any order lists the same pairs.
-void check_list_against_brute_force(int subdivisions, bool general, bool reversed = false) {
+/// With ranges by species (`by_species`): species i % 3 and each pair listed within its own
+/// range of the table below plus the skin, never where the range is 0; `undescribed` gives
+/// every 7th particle a species beyond the table, listed within the whole range.
+void check_list_against_brute_force(int subdivisions, bool general, bool reversed = false,
+                                    bool by_species = false, bool undescribed = false) {
     SCOPED_TRACE("subdivisions " + std::to_string(subdivisions) + (general ? ", general" : "") +
-                 (reversed ? ", reversed" : ""));
+                 (reversed ? ", reversed" : "") + (by_species ? ", by species" : "") +
+                 (undescribed ? ", undescribed species" : ""));
     Box box;
     box.hi = {6.0, 7.5, 9.0};  // every edge > 2 (cutoff + skin): minimum image is unique
     decomp::RankGrid grid(MPI_COMM_SELF, box);
@@ -34,6 +39,21 @@ void check_list_against_brute_force(int subdivisions, bool general, bool reverse
     fixtures::add_uniform_particles(store, box.hi, n, 3);
     NeighbourList list(1.12, 0.38);
     const double rl = list.list_cutoff();
+    // Short and long ranges, and pairs that never meet (a solvent among sites).
+    const std::vector<double> range{0.5, 1.12, 0.0,  //
+                                    1.12, 0.3, 0.8,  //
+                                    0.0, 0.8, 1.12};
+    if (by_species) {
+        list.set_pair_ranges(range, 3);
+        for (int i = 0; i < n; ++i) store.species[std::size_t(i)] = undescribed && i % 7 == 0 ? 3 : i % 3;
+    }
+    auto pair_range = [&](long a, long b) {  // by ids (= the particles' first indices)
+        if (!by_species) return rl;
+        const int sa = undescribed && a % 7 == 0 ? 3 : int(a % 3), sb = undescribed && b % 7 == 0 ? 3 : int(b % 3);
+        if (sa > 2 || sb > 2) return rl;
+        const double r = range[std::size_t(3 * sa + sb)];
+        return r > 0 ? r + list.skin() : -1.0;
+    };
     CellList cells;
     cells.setup(grid.lo(), grid.hi(), rl, rl, subdivisions);
     EXPECT_EQ(cells.reach().x, subdivisions);
@@ -42,7 +62,7 @@ void check_list_against_brute_force(int subdivisions, bool general, bool reverse
     if (reversed) std::reverse(order.begin(), order.end());
     store.permute_owned(order);
     decomp::HaloExchange halo;
-    halo.build(store, grid, rl, kPosition | kId);
+    halo.build(store, grid, rl, kPosition | kId | kSpecies);
     cells.bin(store.position.data(), store.size());
     list.build(store, cells, general);
 
@@ -63,14 +83,16 @@ void check_list_against_brute_force(int subdivisions, bool general, bool reverse
     // the rounding) may also list pairs within that widening, never further.
     std::set<std::pair<long, long>> expected, tolerated;
     const Vec3 len = box.length();
-    const double widened = rl + (general ? 0.0 : cells.binned_distance_error());
-    ASSERT_LT(widened, rl * (1 + 1e-5));
+    const double widening = general ? 0.0 : cells.binned_distance_error();
+    ASSERT_LT(widening, rl * 1e-5);
     for (int i = 0; i < n; ++i)
         for (int j = i + 1; j < n; ++j) {
             Vec3 r = store.position[i] - store.position[j];
             for (int d = 0; d < 3; ++d) r[d] -= len[d] * std::round(r[d] / len[d]);
             const long a = store.id[i], b = store.id[j];
-            if (dot(r, r) < rl * rl) expected.insert({std::min(a, b), std::max(a, b)});
+            const double reach = pair_range(a, b), widened = reach + widening;
+            if (reach < 0) continue;
+            if (dot(r, r) < reach * reach) expected.insert({std::min(a, b), std::max(a, b)});
             else if (dot(r, r) < widened * widened) tolerated.insert({std::min(a, b), std::max(a, b)});
         }
     for (const auto& [pair, count] : coverage)
@@ -89,6 +111,16 @@ TEST(NeighbourList, ListsExactlyThePairsWithinCutoffPlusSkinOnce) {
     for (int subdivisions : {1, 2, 3})
         for (bool general : {false, true}) check_list_against_brute_force(subdivisions, general);
     for (int subdivisions : {1, 2}) check_list_against_brute_force(subdivisions, false, true);
+}
+
+// Ranges by species pair (ForceTerm::pair_ranges): each pair within its own range plus the
+// skin, none where its species never meet; a search from a species may stop at its longest
+// range only when every species has its row, so undescribed ones are checked too.
+TEST(NeighbourList, ListsThePairsWithinTheirSpeciesRange) {
+    for (int subdivisions : {1, 2, 3})
+        for (bool general : {false, true})
+            for (bool undescribed : {false, true})
+                check_list_against_brute_force(subdivisions, general, false, true, undescribed);
 }
 
 TEST(NeighbourList, RebuildIsRequestedOnlyBeyondHalfTheSkin) {
