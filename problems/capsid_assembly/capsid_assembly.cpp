@@ -395,7 +395,11 @@ ProblemInfo capsid_assembly_info() {
     info.name = "capsid-assembly";
     info.description = "rigid capsomers with attraction sites in an explicit solvent: closed 60-particle shells";
     info.schema = run_schema();
-    info.schema.set_default("dt", "0.005").set_default("equilibration_steps", "0");
+    // Skin 0.7 on cells of half the list range: with the list by species (the solvent's pairs
+    // within the WCA range, the sites' within 3), 2.0x the engine's 0.3 and whole cells in the
+    // explicit solvent and 1.6x in the implicit one (benchmarks/RESULTS.md, "Ranges by species").
+    info.schema.set_default("dt", "0.005").set_default("equilibration_steps", "0")
+        .set_default("skin", "0.7").set_default("cell_subdivisions", "2");
     info.schema.integer("capsomers", 4752, 1, 1e8, "1", "number of capsomers N_p")
         .real("particle_fraction", 0.022, 1e-6, 1, "1",
               "p = N_p / N with N = capsomers + solvent atoms (each capsomer counted once)", true)
