@@ -450,6 +450,11 @@ ProblemInfo capsid_assembly_info() {
     // in 8 seeds while the open cluster lost members in 4 (capsid_hysteresis_2026-12-03.log).
     info.presets["small"] = {{"capsomers", "60"}, {"start", "open_shell"}, {"attraction", "0.062"},
                              {"steps", "100000"}, {"sample_every", "5000"}, {"progress_interval", "60"}};
+    // The paper's Table 1 system: N = 1.25e5 at p = 0.033 (4125 capsomers), its runs 0.85-3.1e8
+    // steps; e is the table's variable (--set attraction=...).
+    info.presets["table1"] = {{"capsomers", "4125"}, {"particle_fraction", "0.033"}, {"steps", "150000000"},
+                              {"sample_every", "50000"}, {"output.every", "1000000"},
+                              {"checkpoint_every", "1000000"}, {"progress_interval", "300"}};
     info.presets["paper"] = {{"capsomers", "4752"}, {"steps", "320000000"}, {"sample_every", "50000"},
                              {"output.every", "1000000"}, {"checkpoint_every", "1000000"},
                              {"progress_interval", "300"}};
