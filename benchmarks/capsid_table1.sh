@@ -3,8 +3,9 @@
 # length over a range of attraction e and seeds, from monomers, in the implicit solvent (Langevin
 # bodies at the explicit solvent's measured diffusion: fast exploration). Tabulates per run the
 # largest cluster, the mass fractions by size group (1, 2-5, 6-50, 51-59, 60), complete shells
-# and bonds at the end. The paper's pattern: no growth at low e, shells in between, many mid-size
-# clusters and no shells at high e.
+# and bonds at the end; then when mass first appears in clusters of 6 or more, and when it
+# reaches half its final value. The paper's pattern: no growth at low e, shells in between,
+# many mid-size clusters and no shells at high e.
 # usage: benchmarks/capsid_table1.sh [OUT] [E...]   (defaults /tmp/capsid_table1; e 0.06 0.09
 #        0.12 0.15); SEEDS ("21 22"), STEPS (400000), CAPSOMERS (300), SOLVENT (implicit)
 #        override. Runs already complete in OUT are kept; the table goes to stdout.
@@ -42,4 +43,19 @@ for e in energies:
         f = m["mass_fractions"]
         print(f"| {e} | {seed} | {m['largest_cluster']:.0f} | " + " | ".join(f"{x:.3f}" for x in f)
               + f" | {m['complete_shells']:.0f} | {m['bonds']:.0f} | {s['wall_seconds']:.0f} |")
+# How soon: the first sample with mass in clusters of 6 or more (the lag), and the first at which
+# that mass reaches half its value at the end (samples every 1/50 of the run).
+import h5py
+import numpy as np
+print()
+print("| e | seed | first mass in 6+ (tau) | half of the final mass in 6+ (tau) |")
+print("|---|---|---|---|")
+for e in energies:
+    for seed in seeds:
+        with h5py.File(f"{out}/e{e}_seed{seed}/trajectory.h5", "r") as h:
+            t = h["observables/mass_fractions/time"][:]
+            big = np.asarray(h["observables/mass_fractions/value"][:], float).reshape(len(t), -1)[:, 2:].sum(axis=1)
+        first = f"{t[np.argmax(big > 0)]:.0f}" if (big > 0).any() else "-"
+        half = f"{t[np.argmax(big >= 0.5 * big[-1])]:.0f}" if big[-1] > 0 else "-"
+        print(f"| {e} | {seed} | {first} | {half} |")
 PY
