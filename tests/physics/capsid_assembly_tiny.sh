@@ -13,7 +13,8 @@
 #   coarse tallies, every second sample, 60 at each of 4 intervals: 240, with the checkpoint
 #   between two of their samples);
 #   a seeded cluster (start=cluster) is one cluster of cluster_size members: a dimer has 1 bond,
-#   the trimer is fully bonded (3), 59 members are the shell less one (150 - 5 = 145 bonds).
+#   the trimer is fully bonded (3), 59 members are the shell less one (150 - 5 = 145 bonds);
+#   the table1 preset starts the paper's Table 1 system (244625 particles).
 # usage: capsid_assembly_tiny.sh EMERGENT MPIRUN
 set -euo pipefail
 exe=$1
@@ -45,6 +46,10 @@ done
 if [ "$(tail -n 1 "$dir/straight/thermo.dat")" != "$(tail -n 1 "$dir/part/thermo.dat")" ]; then
   echo "FAIL: the continued run does not end as the straight run"; exit 1
 fi
+# The table1 preset is the paper's Table 1 system: N = 1.25e5 at p = 0.033 with each capsomer
+# once, so 4125 capsomers of 30 particles (10 spheres, 20 sites) and 120875 solvent atoms.
+"$exe" run capsid-assembly --preset table1 --set steps=2 --set progress_interval=0 --set output.every=0 \
+  --set checkpoint_every=0 -o "$dir/table1" >/dev/null
 /usr/bin/python3 - "$dir" <<'PY'
 import sys
 import h5py, numpy as np
@@ -109,6 +114,10 @@ for n, expected in ((2, 1), (3, 3), (59, 145)):
           f"clusters {m['clusters']:.0f}")
     if (m["largest_cluster"], m["bonds"], m["clusters"]) != (n, expected, 80 - n + 1):
         fail.append(f"the seeded cluster of {n} is not one cluster with {expected} bonds")
+n_table1 = json.load(open(f"{d}/table1/summary.json"))["N"]
+print(f"table1 preset: {n_table1} particles")
+if n_table1 != 120875 + 4125 * 30:
+    fail.append(f"the table1 preset has {n_table1} particles, not Table 1's system (244625)")
 if fail:
     sys.exit("FAIL: " + "; ".join(fail))
 print("ok")
