@@ -237,21 +237,25 @@ struct Simulation::Engine {
     /// The terms' ranges by species pair, the largest for each pair (symmetric, at most the
     /// cutoff), set on the list where some pair's is shorter than the cutoff.
     void set_pair_ranges(double cutoff) {
+        std::vector<std::vector<double>> tables;  // each term's, and its width
+        std::vector<std::size_t> widths;
         std::size_t n = 0;
         for (const auto& term : forces) {
-            const std::size_t size = term->pair_ranges().size(),
+            tables.push_back(term->pair_ranges());
+            const std::size_t size = tables.back().size(),
                               m = static_cast<std::size_t>(std::llround(std::sqrt(double(size))));
             if (m * m != size) throw std::logic_error("force term '" + term->name() + "': pair_ranges() is not n x n");
+            widths.push_back(m);
             n = std::max(n, m);
         }
         if (n == 0) return;
         std::vector<double> range(n * n, 0.0);
-        for (const auto& term : forces) {
-            const std::vector<double> own = term->pair_ranges();
-            const std::size_t m = static_cast<std::size_t>(std::llround(std::sqrt(double(own.size()))));
+        for (std::size_t t = 0; t < forces.size(); ++t) {
+            const std::vector<double>& own = tables[t];
+            const std::size_t m = widths[t];
             for (std::size_t i = 0; i < n; ++i)
                 for (std::size_t j = 0; j < n; ++j) {
-                    const double r = i < m && j < m ? std::max(own[i * m + j], own[j * m + i]) : term->cutoff();
+                    const double r = i < m && j < m ? std::max(own[i * m + j], own[j * m + i]) : forces[t]->cutoff();
                     range[i * n + j] = std::max(range[i * n + j], std::min(r, cutoff));
                 }
         }

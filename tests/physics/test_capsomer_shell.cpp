@@ -81,19 +81,20 @@ Box big_box() {
     return b;
 }
 
-/// Potential energy of the bodies at `poses` through the engine (no solvent, at rest).
-double engine_energy(const Capsomer& c, const std::vector<Pose>& poses, double epsilon) {
-    RunSettings rs;
-    Simulation sim(MPI_COMM_WORLD, rs);
-    sim.set_box(big_box());
-    std::vector<double> masses{1.5};  // species 0: spheres; then the massless sites
-    masses.resize(kFirstSite + c.sites.size(), 0.0);
-    sim.set_species_masses(masses);
+/// The design's site attraction at strength `epsilon`.
+SiteAttraction attraction(const Capsomer& c, double epsilon) {
     SiteAttraction a;
     a.first_site = kFirstSite;
     a.partner = c.partner;
     a.epsilon = epsilon;
-    sim.add_force(make_soft_spheres_and_sites(a));
+    return a;
+}
+
+/// The design's bodies at `poses` (with velocity[b] where given, else at rest): one body kind of
+/// its spheres (species 0, diameter 1) and massless sites, body ids from 0. Returns the first
+/// particle id after the bodies' constituents.
+std::int64_t add_capsomers(Simulation& sim, const Capsomer& c, const std::vector<Pose>& poses,
+                           const std::vector<Vec3>& velocity = {}) {
     std::vector<Vec3> x = c.spheres;
     x.insert(x.end(), c.sites.begin(), c.sites.end());
     std::vector<int> sp(c.spheres.size(), 0);
@@ -105,8 +106,22 @@ double engine_energy(const Capsomer& c, const std::vector<Pose>& poses, double e
     centre *= 1.0 / double(c.spheres.size());
     const std::int64_t per = std::int64_t(x.size());
     for (std::size_t b = 0; b < poses.size(); ++b)
-        sim.add_body(kind, rotate(poses[b].q, centre) + poses[b].shift, poses[b].q, {0, 0, 0}, {0, 0, 0},
-                     std::int64_t(b), std::int64_t(b) * per);
+        sim.add_body(kind, rotate(poses[b].q, centre) + poses[b].shift, poses[b].q,
+                     b < velocity.size() ? velocity[b] : Vec3{0, 0, 0}, {0, 0, 0}, std::int64_t(b),
+                     std::int64_t(b) * per);
+    return std::int64_t(poses.size()) * per;
+}
+
+/// Potential energy of the bodies at `poses` through the engine (no solvent, at rest).
+double engine_energy(const Capsomer& c, const std::vector<Pose>& poses, double epsilon) {
+    RunSettings rs;
+    Simulation sim(MPI_COMM_WORLD, rs);
+    sim.set_box(big_box());
+    std::vector<double> masses{1.5};  // species 0: spheres; then the massless sites
+    masses.resize(kFirstSite + c.sites.size(), 0.0);
+    sim.set_species_masses(masses);
+    sim.add_force(make_soft_spheres_and_sites(attraction(c, epsilon)));
+    add_capsomers(sim, c, poses);
     sim.initialise();
     const ThermoSample t = sim.measure();
     return t.potential * double(t.n);
@@ -387,30 +402,15 @@ std::pair<std::map<std::int64_t, Vec3>, long long> shell_in_solvent(bool by_spec
     std::vector<double> masses{1.0};
     masses.resize(kFirstSite + c.sites.size(), 0.0);
     sim.set_species_masses(masses);
-    SiteAttraction a;
-    a.first_site = kFirstSite;
-    a.partner = c.partner;
-    a.epsilon = kE;
-    std::unique_ptr<ForceTerm> term = make_soft_spheres_and_sites(a);
+    std::unique_ptr<ForceTerm> term = make_soft_spheres_and_sites(attraction(c, kE));
     sim.add_force(by_species ? std::move(term) : std::make_unique<WholeRange>(std::move(term)));
-    std::vector<Vec3> x = c.spheres;
-    x.insert(x.end(), c.sites.begin(), c.sites.end());
-    std::vector<int> sp(c.spheres.size(), 0);
-    std::vector<double> d(c.spheres.size(), 1.0);
-    for (std::size_t k = 0; k < c.sites.size(); ++k) sp.push_back(kFirstSite + int(k)), d.push_back(0.0);
-    const int kind = sim.add_body_kind(x, sp, d);
-    Vec3 centre{0, 0, 0};
-    for (const Vec3& s : c.spheres) centre += s;
-    centre *= 1.0 / double(c.spheres.size());
-    const std::int64_t per = std::int64_t(x.size());
     std::vector<Pose> poses = shell({Quat{1, 0, 0, 0}, {20, 20, 20}});
     for (int m = 0; m < 4; ++m) poses.push_back({Quat{1, 0, 0, 0}, Vec3{6.0 + 28.0 * (m % 2), 6.0 + 28.0 * (m / 2), 6.0}});
+    std::vector<Vec3> velocity;
     for (std::size_t b = 0; b < poses.size(); ++b)
-        sim.add_body(kind, rotate(poses[b].q, centre) + poses[b].shift, poses[b].q,
-                     0.2 * Vec3{gaussian(3, b, 0), gaussian(3, b, 1), gaussian(3, b, 2)}, {0, 0, 0}, std::int64_t(b),
-                     std::int64_t(b) * per);
+        velocity.push_back(0.2 * Vec3{gaussian(3, b, 0), gaussian(3, b, 1), gaussian(3, b, 2)});
+    std::int64_t id = add_capsomers(sim, c, poses, velocity);
     // Solvent on a lattice of spacing 2, clear of the shell (outer radius < 7) and the monomers.
-    std::int64_t id = std::int64_t(poses.size()) * per;
     for (int i = 0; i < 20; ++i)
         for (int j = 0; j < 20; ++j)
             for (int k = 0; k < 20; ++k) {
