@@ -84,10 +84,127 @@ void NeighbourList::keep_reference(const ParticleStore& store, std::size_t n_own
     built_at_.assign(store.position.begin(), store.position.begin() + n_owned);
 }
 
+// Half list where cells may hold owned particles and ghosts together (rigid bodies' constituents
+// outside the domain, their ghosts inside it). A cell's members are in ascending index, so its
+// owned members come first and its ghosts after them. An owned pair is listed under its member in
+// the earlier slot (cells in index order): from a particle, later slots of its own cell, whole
+// cells after it and only the ghosts of cells before it. An owned-ghost pair is listed under its
+// owned member, as everywhere. Rows hold their pairs in the order of the general search, so with
+// owned particles in cell order (the engine's) a row lists what that search lists under i < j,
+// in the same order, plus at most a few pairs just beyond their range (a zero force).
+void NeighbourList::build_general_half(const ParticleStore& store, const CellList& cells) {
+    const std::size_t n_owned = store.n_owned();
+    const std::uint32_t* member = cells.members();
+    const int n_cells = cells.n_cells();
+    place_.assign(n_owned, Place{0, -1});
+    first_ghost_.resize(std::size_t(n_cells));
+    for (int c = 0; c < n_cells; ++c) {
+        std::uint32_t a = cells.first(c);
+        for (const std::uint32_t e = cells.first(c + 1); a < e && member[a] < n_owned; ++a) place_[member[a]] = Place{a, c};
+        first_ghost_[std::size_t(c)] = a;
+    }
+    offset_.assign(n_owned + 1, 0);
+    const std::int64_t* body = store.has_rigid_fields() ? store.body.data() : nullptr;
+    // The search runs on the cells' single-precision copy, its ranges widened by the copy's
+    // rounding (as in build()): a pair a little beyond its range may be listed; its force is 0.
+    const BinnedPoint* xb = cells.binned_positions();
+    const double padded = list_cutoff() + cells.binned_distance_error();
+    const float r2f = std::nextafter(static_cast<float>(padded * padded), 1e30f);
+    const unsigned n_species = static_cast<unsigned>(n_range_species_);
+    const int* species = n_species ? store.species.data() : nullptr;
+    std::vector<float> pair_r2f(std::size_t(n_species) * n_species, -1.0f);
+    for (std::size_t k = 0; k < pair_r2f.size(); ++k)
+        if (range_table_[k] > 0) {
+            const double r = std::sqrt(range_table_[k]) + cells.binned_distance_error();
+            pair_r2f[k] = std::nextafter(static_cast<float>(r * r), 1e30f);
+        }
+    const CellIndex& grid = cells.index();
+    std::vector<Int3> reach(n_species, grid.reach);
+    if (species && species_described(store, n_range_species_))
+        for (unsigned s = 0; s < n_species; ++s) reach[s] = grid.reach_of(range_table_[n_species * n_species + s]);
+    const Int3 shape = grid.n;
+    // Species and body by slot: the candidates' are read in slot order, not gathered by index.
+    const std::size_t n_slots = cells.first(n_cells);
+    slot_species_.resize(species ? n_slots : 0);
+    slot_body_.resize(body ? n_slots : 0);
+    for (std::size_t s = 0; s < slot_species_.size(); ++s) slot_species_[s] = species[member[s]];
+    for (std::size_t s = 0; s < slot_body_.size(); ++s) slot_body_[s] = body[member[s]];
+    const int* species_at = slot_species_.data();
+    const std::int64_t* body_at = slot_body_.data();
+    // Slot ranges of the cells within reach of one cell (other than the cell itself), in the
+    // search's order, collected once for consecutive rows with the same cell and reach.
+    std::vector<std::uint32_t> range_begin, range_end;
+    std::vector<std::uint8_t> range_after;  // 1: a range of the cell's own
+    int ranges_cell = -1;
+    Int3 ranges_reach{-1, -1, -1};
+    std::uint32_t bound = 0;
+    std::size_t count = 0;
+    neighbour_.resize(std::max<std::size_t>(neighbour_.size(), n_pairs_ + n_pairs_ / 8 + 1024));
+    for (std::size_t i = 0; i < n_owned; ++i) {
+        const Place here = place_[i];
+        if (here.cell < 0) throw std::logic_error("NeighbourList::build: an owned particle is in no cell");
+        const unsigned si = species ? static_cast<unsigned>(species[i]) : 0;
+        const Int3 r = si < n_species ? reach[si] : grid.reach;
+        const int c = here.cell;
+        if (c != ranges_cell || r.x != ranges_reach.x || r.y != ranges_reach.y || r.z != ranges_reach.z) {
+            ranges_cell = c;
+            ranges_reach = r;
+            range_begin.clear();
+            range_end.clear();
+            range_after.clear();
+            bound = 0;
+            const int cx = c % shape.x, cy = (c / shape.x) % shape.y, cz = c / (shape.x * shape.y);
+            for (int dz = -r.z; dz <= r.z; ++dz)
+                for (int dy = -r.y; dy <= r.y; ++dy)
+                    for (int dx = -r.x; dx <= r.x; ++dx) {
+                        const int ax = cx + dx, ay = cy + dy, az = cz + dz;
+                        if (ax < 0 || ay < 0 || az < 0 || ax >= shape.x || ay >= shape.y || az >= shape.z) continue;
+                        const int c2 = (az * shape.y + ay) * shape.x + ax;
+                        // The cell itself is a marker: its range depends on the row's slot.
+                        const std::uint32_t b = c2 == c ? 0 : (c2 < c ? first_ghost_[std::size_t(c2)] : cells.first(c2));
+                        const std::uint32_t e = c2 == c ? 0 : cells.first(c2 + 1);
+                        if (c2 != c && b == e) continue;
+                        if (c2 != c && !range_end.empty() && range_end.back() == b && !range_after.back()) {
+                            range_end.back() = e;
+                        } else {
+                            range_begin.push_back(b);
+                            range_end.push_back(e);
+                            range_after.push_back(c2 == c ? 1 : 0);
+                        }
+                        bound += e - b;
+                    }
+        }
+        const std::uint32_t a = here.slot, own_end = cells.first(c + 1);
+        if (neighbour_.size() < count + bound + (own_end - a))
+            neighbour_.resize(count + bound + (own_end - a) + (count + bound) / 2);
+        std::uint32_t* out = neighbour_.data();
+        const BinnedPoint xi = xb[a];
+        const std::int64_t bi = body ? body[i] : -1;
+        // Branch-free append: write every candidate, advance only past those listed.
+        for (std::size_t k = 0; k < range_begin.size(); ++k) {
+            const std::uint32_t b0 = range_after[k] ? a + 1 : range_begin[k];
+            const std::uint32_t e0 = range_after[k] ? own_end : range_end[k];
+            for (std::uint32_t s = b0; s < e0; ++s) {
+                const float dx = xi.x - xb[s].x, dy = xi.y - xb[s].y, dz = xi.z - xb[s].z;
+                float limit = r2f;
+                if (species) {
+                    const unsigned sj = static_cast<unsigned>(species_at[s]);
+                    if (si < n_species && sj < n_species) limit = pair_r2f[si * n_species + sj];
+                }
+                out[count] = member[s];
+                count += (dx * dx + dy * dy + dz * dz < limit && !(bi >= 0 && body_at[s] == bi)) ? 1 : 0;
+            }
+        }
+        offset_[i + 1] = static_cast<std::uint32_t>(count);
+    }
+    n_pairs_ = count;
+    keep_reference(store, n_owned);
+}
+
 void NeighbourList::build(const ParticleStore& store, const CellList& cells,
                           bool owned_outside_domain) {
     if (owned_outside_domain) {
-        build_general(store, cells, false);
+        build_general_half(store, cells);
         return;
     }
     const std::size_t n_owned = store.n_owned();

@@ -23,7 +23,7 @@ struct SquaredDisplacement {
 };
 
 /// Half neighbour list over owned particles: each pair is listed once, under one of its two
-/// particles (under the one in the earlier cell or slot; the general search: under i < j).
+/// particles (under the one in the earlier slot: the earlier cell, or earlier in its cell).
 /// Every owned–ghost pair is listed under its owned member; the rank owning the ghost lists the mirror pair, so no forces need to be
 /// sent back. Pairs closer than cutoff + skin at build time are listed (or than their species
 /// pair's range + skin: set_pair_ranges); the list stays valid while no particle has moved more
@@ -80,6 +80,7 @@ public:
 
 private:
     void build_general(const ParticleStore& store, const CellList& cells, bool full);
+    void build_general_half(const ParticleStore& store, const CellList& cells);
     void keep_reference(const ParticleStore& store, std::size_t n_owned);
 
     double cutoff_ = 0, skin_ = 0;
@@ -92,6 +93,9 @@ private:
         int cell;            ///< -1: not in an inner cell
     };
     std::vector<Place> place_;  ///< per owned particle, during build()
+    std::vector<std::uint32_t> first_ghost_;  ///< per cell: the slot of its first ghost
+    std::vector<int> slot_species_;           ///< per slot, during the general build
+    std::vector<std::int64_t> slot_body_;     ///< per slot, during the general build
     std::vector<Vec3> built_at_;
 };
 
