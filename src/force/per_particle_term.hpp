@@ -11,6 +11,7 @@
 #include "emergent/backend_particles.hpp"
 #include "emergent/execution.hpp"
 #include "emergent/force_term.hpp"
+#include "force/granular_contact.hpp"
 #include "neighbour/neighbour_list.hpp"
 
 namespace emergent::force {
@@ -28,6 +29,30 @@ struct HostParticles {
         overlap.resize(n_owned);
         p.energy = energy.data();
         p.overlap = overlap.data();
+    }
+};
+
+/// A wall's contact law on each particle alone: f[i] += law(x, v, d, tally); with Sample,
+/// energy[i] and overlap[i] (in diameters) get what the law tallied (its contacts' energy and
+/// the largest overlap). Law: EMERGENT_HD Vec3 operator()(x, v, d, ContactTally*), the tally
+/// null when not sampling.
+template <bool Sample, class Law>
+struct TalliedWallForce {
+    const Vec3* x;
+    const Vec3* v;
+    const Real* diameter;
+    Vec3* f;
+    Law law;
+    Real* energy = nullptr;
+    Real* overlap = nullptr;
+
+    EMERGENT_HD void operator()(std::size_t i) const {
+        ContactTally tally;
+        f[i] += law(x[i], v[i], diameter[i], Sample ? &tally : nullptr);
+        if constexpr (Sample) {
+            energy[i] = tally.energy;
+            overlap[i] = tally.max_overlap;
+        }
     }
 };
 
@@ -57,6 +82,12 @@ protected:
     /// left (its functor wrote p.energy and p.overlap).
     template <bool Sample, class Functor>
     static void launch(const BackendParticles& p, const Functor& f, ForceSums& sums);
+    /// launch() of a contact law through TalliedWallForce.
+    template <bool Sample, class Law>
+    static void launch_law(const BackendParticles& p, const Law& law, ForceSums& sums) {
+        launch<Sample>(p, TalliedWallForce<Sample, Law>{p.position, p.velocity, p.diameter, p.force, law, p.energy, p.overlap},
+                       sums);
+    }
 };
 
 /// Adds what a sampling pass left in p.energy, p.virial (if `virial`) and p.overlap.

@@ -33,10 +33,7 @@ private:
         ForceSums& sums;
         template <bool Sample, bool Damping>
         void operator()() const {
-            launch<Sample>(p, force::RodBaseForce<Sample, Damping>{p.position, p.velocity, p.diameter,
-                                                                   p.force, t.lattice_, t.p_, t.range_,
-                                                                   t.d_rod_, time, p.energy, p.overlap},
-                           sums);
+            launch_law<Sample>(p, force::RodBaseLaw<Damping>{t.lattice_, t.p_, t.range_, t.d_rod_, time}, sums);
         }
     };
     void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const override {

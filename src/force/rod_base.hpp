@@ -142,28 +142,14 @@ EMERGENT_HD inline Vec3 rod_base_force(const RodLattice& b, const GranularPair& 
     return f;
 }
 
-/// The per-particle loop of a rod base: f[i] += rod_base_force; with Sample, energy[i] and
-/// overlap[i] (in diameters) get the particle's contact energy and largest overlap.
-template <bool Sample, bool Damping>
-struct RodBaseForce {
-    const Vec3* x;
-    const Vec3* v;
-    const Real* diameter;
-    Vec3* f;
+/// The rod base's contact law on one particle (force::TalliedWallForce applies it to each).
+template <bool Damping>
+struct RodBaseLaw {
     RodLattice base;
     GranularPair p;
     Real range, d_rod, time;
-    Real* energy = nullptr;
-    Real* overlap = nullptr;
-
-    EMERGENT_HD void operator()(std::size_t i) const {
-        ContactTally tally;
-        f[i] += rod_base_force<Damping>(base, p, range, d_rod, x[i], v[i], diameter[i], time,
-                                        Sample ? &tally : nullptr);
-        if constexpr (Sample) {
-            energy[i] = tally.energy;
-            overlap[i] = tally.max_overlap;
-        }
+    EMERGENT_HD Vec3 operator()(const Vec3& x, const Vec3& v, Real d, ContactTally* tally) const {
+        return rod_base_force<Damping>(base, p, range, d_rod, x, v, d, time, tally);
     }
 };
 

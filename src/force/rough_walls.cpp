@@ -16,28 +16,15 @@ namespace emergent {
 
 namespace {
 
-/// force::rough_wall_force of one grid (Lattice) on particle i; with Sample, energy[i] and
-/// overlap[i] (in diameters) get its contact energy and largest overlap.
-template <class Lattice, bool Sample, bool Damping, bool Friction>
-struct RoughWallForce {
-    const Vec3* x;
-    const Vec3* v;
-    const Real* diameter;
-    Vec3* f;
+/// force::rough_wall_force of one grid (Lattice) on one particle (force::TalliedWallForce
+/// applies it to each).
+template <class Lattice, bool Damping, bool Friction>
+struct RoughWallLaw {
     Lattice lattice;
     GranularPair p;
     Real range, d_wall, time;
-    Real* energy = nullptr;
-    Real* overlap = nullptr;
-
-    EMERGENT_HD void operator()(std::size_t i) const {
-        force::ContactTally tally;
-        f[i] += force::rough_wall_force<Damping, Friction>(lattice, p, range, d_wall, x[i], v[i],
-                                                           diameter[i], time, Sample ? &tally : nullptr);
-        if constexpr (Sample) {
-            energy[i] = tally.energy;
-            overlap[i] = tally.max_overlap;
-        }
+    EMERGENT_HD Vec3 operator()(const Vec3& x, const Vec3& v, Real d, force::ContactTally* tally) const {
+        return force::rough_wall_force<Damping, Friction>(lattice, p, range, d_wall, x, v, d, time, tally);
     }
 };
 
@@ -62,11 +49,8 @@ private:
         ForceSums& sums;
         template <bool Sample, bool Damping, bool Friction>
         void operator()() const {
-            launch<Sample>(p,
-                           RoughWallForce<Lattice, Sample, Damping, Friction>{
-                               p.position, p.velocity, p.diameter, p.force, w.lattice_, w.p_,
-                               w.range_, w.d_wall_, time, p.energy, p.overlap},
-                           sums);
+            launch_law<Sample>(p, RoughWallLaw<Lattice, Damping, Friction>{w.lattice_, w.p_, w.range_, w.d_wall_, time},
+                               sums);
         }
     };
     void add(const BackendParticles& p, double time, bool sample, ForceSums& sums) const override {
