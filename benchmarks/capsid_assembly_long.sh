@@ -1,21 +1,23 @@
 #!/usr/bin/env bash
 # capsid-assembly from monomers over as long as a machine allows: one run per (e, seed) in the
 # implicit solvent at Table 1's particle fraction, checkpointed, stopped whenever needed and
-# continued later; its mass fractions against time; and windows of finely sampled steps taken
-# from its latest checkpoint, which tally growth and loss by cluster size among the clusters met
-# during assembly (the paper's growth-step probabilities, not seeded patches).
+# continued later. Its growth and loss tallies come from cluster censuses every EVENTS steps
+# between the samples (events_every), so they count the clusters met during assembly (the
+# paper's growth-step probabilities, not seeded patches), at that interval and at twice it.
 # usage:
 #   benchmarks/capsid_assembly_long.sh run OUT E SEED        starts OUT/e<E>_seed<SEED>, or
 #       continues it from its checkpoint; runs until STEPS (1e8) or SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
-#       CAPSOMERS (300), SOLVENT (implicit), SAMPLE (20000 steps), CHECKPOINT (200000) override.
+#       CAPSOMERS (300), SOLVENT (implicit), SAMPLE (20000 steps), EVENTS (50 steps),
+#       CHECKPOINT (200000) override.
 #   benchmarks/capsid_assembly_long.sh table RUN_DIR...      mass fractions by size group at
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
-#       complete shell, and the last sample.
+#       complete shell, the last sample; and P_n = g / (g + l) by size from the tallies at the
+#       last sample (since the events interval was last set), at the interval and twice it.
 #   benchmarks/capsid_assembly_long.sh window RUN_DIR STEPS  copies RUN_DIR's checkpoint to
-#       RUN_DIR/window<STEP> and continues it STEPS steps sampled every WINDOW_SAMPLE (25) steps;
-#       tabulates P_n = g / (g + l) by size, tallied every sample and every second one (the
-#       tallies of the window alone: its first sample's counts are taken off).
+#       RUN_DIR/window<STEP> and continues it STEPS steps with censuses every WINDOW_EVENTS (25)
+#       steps: the same table over a short stretch at a finer interval (a continuation at another
+#       interval starts the tallies afresh, so they are the window's own).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . benchmarks/common.sh
@@ -23,6 +25,27 @@ what=${1:-}
 shift || true
 series_py='
 import glob, h5py, numpy as np, os, re
+def wilson(g, t):
+    """P = g / t with its 95 % Wilson interval (None for t = 0)."""
+    if t == 0:
+        return None
+    z, p = 1.96, g / t
+    centre = (p + z * z / (2 * t)) / (1 + z * z / t)
+    half = z * np.sqrt(p * (1 - p) / t + z * z / (4 * t * t)) / (1 + z * z / t)
+    return p, max(0.0, centre - half), min(1.0, centre + half)
+def step_table(tally, interval):
+    """P_n = g / (g + l) by size group, from tallies (name -> 60 counts) at interval and twice it."""
+    tau = 0.005 * interval
+    print(f"| size n | g ({tau:g} tau) | l | P | g ({2 * tau:g} tau) | l | P |")
+    print("|---|---|---|---|---|---|---|")
+    for lo, hi in ((2, 2), (3, 3), (4, 10), (11, 20), (21, 30), (31, 40), (41, 50), (51, 59), (4, 50)):
+        cells = [f"{lo}" if lo == hi else f"{lo}-{hi}"]
+        for suffix in ("", "_coarse"):
+            g = sum(tally["growth_events" + suffix][k - 1] for k in range(lo, hi + 1))
+            l = sum(tally["loss_events" + suffix][k - 1] for k in range(lo, hi + 1))
+            w = wilson(g, g + l)
+            cells += [f"{g:.0f}", f"{l:.0f}", "-" if w is None else f"{w[0]:.3f} ({w[1]:.3f}-{w[2]:.3f})"]
+        print("| " + " | ".join(cells) + " |")
 def series(run, name):
     """An observable over a run and its continuations, in time order (a later file wins)."""
     files = [os.path.join(run, "trajectory.h5")] + sorted(
@@ -53,7 +76,8 @@ run)
   fi
   exec "$exe" run capsid-assembly --set capsomers="${CAPSOMERS:-300}" --set particle_fraction=0.033 \
     --set solvent="${SOLVENT:-implicit}" --set start=monomers --set attraction="$2" --set seed="$3" \
-    --set steps="${STEPS:-100000000}" --set sample_every="${SAMPLE:-20000}" --set progress_interval=600 \
+    --set steps="${STEPS:-100000000}" --set sample_every="${SAMPLE:-20000}" --set events_every="${EVENTS:-50}" \
+    --set progress_interval=600 \
     --checkpoint-every "${CHECKPOINT:-200000}" -o "$dir"
   ;;
 table)
@@ -76,49 +100,36 @@ for run in sys.argv[1:]:
     first_shell = f"{t[np.argmax(shells[:, 0] > 0)]:.0f} tau" if (shells[:, 0] > 0).any() else "none yet"
     print(f"# lag (first mass in clusters of 6+): {lag}; first complete shell: {first_shell}; "
           f"largest cluster ever sampled: {big[:, 0].max():.0f}")
+    # The tallies' interval: the latest checkpoint's events_every (0: the samples').
+    with h5py.File(os.path.join(run, "checkpoint.h5"), "r") as h:
+        cfg = h["checkpoint/config"].attrs
+        interval = int(cfg["events_every"]) if "events_every" in cfg and int(cfg["events_every"]) > 0 else int(cfg["sample_every"])
+    tally = {n: series(run, n)[1][-1] for n in ("growth_events", "loss_events", "growth_events_coarse", "loss_events_coarse")}
+    print(f"# growth steps from the tallies at the last sample (censuses every {interval} steps since that interval was set):")
+    step_table(tally, interval)
 PY
   ;;
 window)
   [ $# -eq 2 ] || { echo "usage: $0 window RUN_DIR STEPS" >&2; exit 2; }
-  run=$1 steps=$2 sample=${WINDOW_SAMPLE:-25}
+  run=$1 steps=$2 events=${WINDOW_EVENTS:-25}
   [ -f "$run/checkpoint.h5" ] || { echo "$0: no checkpoint in $run" >&2; exit 2; }
   from=$(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r'); print(int(h['checkpoint'].attrs['step']))" "$run/checkpoint.h5")
   win="$run/window$from"
   if [ ! -f "$win/summary.json" ]; then
     mkdir -p "$win"
     cp "$run/checkpoint.h5" "$win/start.h5"
-    "$exe" run --restart "$win/start.h5" --set steps=$((from + steps)) --set sample_every="$sample" \
+    "$exe" run --restart "$win/start.h5" --set steps=$((from + steps)) --set events_every="$events" \
       --set checkpoint_every=0 --set progress_interval=0 -o "$win" >/dev/null
   fi
-  echo "# window from step $from ($(/usr/bin/python3 -c "print($from * 0.005)") tau), $steps steps sampled every $sample; $(run_stamp)"
-  /usr/bin/python3 - "$win" "$sample" <<PY
-import math, sys
+  echo "# window from step $from ($(/usr/bin/python3 -c "print($from * 0.005)") tau), $steps steps, censuses every $events; $(run_stamp)"
+  /usr/bin/python3 - "$win" "$events" <<PY
+import json, sys
 $series_py
-win, sample = sys.argv[1], int(sys.argv[2])
-tau = 0.005 * sample
-tally = {}
-for name in ("growth_events", "loss_events", "clusters_seen", "growth_events_coarse", "loss_events_coarse"):
-    _, v = series(win, name)
-    tally[name] = v[-1] - v[0]  # the window's own events (the first sample compares with the run's last)
-_, m = series(win, "mass_fractions")
-print("# mass fractions at the window's start and end: " + " ".join(f"{x:.3f}" for x in m[0]) + " -> " + " ".join(f"{x:.3f}" for x in m[-1]))
-def wilson(g, t):
-    if t == 0:
-        return None
-    z, p = 1.96, g / t
-    centre = (p + z * z / (2 * t)) / (1 + z * z / t)
-    half = z * math.sqrt(p * (1 - p) / t + z * z / (4 * t * t)) / (1 + z * z / t)
-    return p, max(0.0, centre - half), min(1.0, centre + half)
-print(f"| size n | g ({tau:g} tau) | l | P | g ({2 * tau:g} tau) | l | P |")
-print("|---|---|---|---|---|---|---|")
-for lo, hi in ((2, 2), (3, 3), (4, 10), (11, 20), (21, 30), (31, 40), (41, 50), (51, 59), (4, 50)):
-    cells = [f"{lo}" if lo == hi else f"{lo}-{hi}"]
-    for suffix in ("", "_coarse"):
-        g = sum(tally["growth_events" + suffix][k - 1] for k in range(lo, hi + 1))
-        l = sum(tally["loss_events" + suffix][k - 1] for k in range(lo, hi + 1))
-        w = wilson(g, g + l)
-        cells += [f"{g:.0f}", f"{l:.0f}", "-" if w is None else f"{w[0]:.3f} ({w[1]:.3f}-{w[2]:.3f})"]
-    print("| " + " | ".join(cells) + " |")
+win, events = sys.argv[1], int(sys.argv[2])
+m = json.load(open(f"{win}/summary.json"))["scene_measures"]
+_, f = series(win, "mass_fractions")
+print("# mass fractions at the window's first and last sample: " + " ".join(f"{x:.3f}" for x in f[0]) + " -> " + " ".join(f"{x:.3f}" for x in f[-1]))
+step_table(m, events)
 PY
   ;;
 *)

@@ -45,6 +45,13 @@ public:
     /// behind that the measured phase must not inherit, e.g. the net drift a layer picked up
     /// while it landed. Collective.
     virtual void on_equilibrated(Simulation& /*sim*/) {}
+    /// A scene's look at the state between samples: observe() is called after every step whose
+    /// index is a multiple of observe_every() (0: never), before that step's sample if it has
+    /// one. It writes nothing; it is for tallies that need a finer interval than the written
+    /// samples (e.g. how clusters grow and shrink), reported by measures() and kept by
+    /// saved_state(). Collective.
+    virtual long long observe_every() const { return 0; }
+    virtual void observe(Simulation& /*sim*/) {}
     /// The scene's own measures at a sample step. Collective: the values must be the same on
     /// every rank. The last ones also go into the run summary.
     virtual Measures measures(Simulation& /*sim*/) { return {}; }

@@ -95,6 +95,7 @@ public:
         rule_.bond_range = c.real("bond_range");
         shell_order_ = start == "cluster" ? compact_patch_order() : std::vector<int>{};
         sample_every_ = c.integer("sample_every");
+        events_every_ = c.integer("events_every");
     }
 
     void build(Simulation& sim) override {
@@ -262,14 +263,7 @@ public:
         const KineticParts k = sim.kinetic_parts();
         const double solvent_t = k.n_free > 0 ? 2 * k.free / (3.0 * double(k.n_free)) : 0;
         const double nb = double(std::max<long long>(1, k.n_bodies));
-        if (!previous_.bodies.empty()) events_.tally(previous_, census);
-        previous_ = census;
-        // Every second regular sample feeds the same tallies at twice the interval.
-        const long long step = sim.step_index();
-        if (step % sample_every_ == 0 && (step / sample_every_) % 2 == 0) {
-            if (!previous_coarse_.bodies.empty()) coarse_.tally(previous_coarse_, census);
-            previous_coarse_ = census;
-        }
+        if (events_every_ == 0) tally(census, sim.step_index(), sample_every_);
         last_shells_ = census.complete_clusters(kShell, kFullDegree);
         last_largest_ = census.largest_cluster();
         return {{"bonds", {double(census.bonds.size())}},
@@ -289,9 +283,17 @@ public:
                 {"clusters_seen_coarse", coarse_.seen}};
     }
 
-    // The event tallies go on across a continuation, from the last sample's clusters.
+    /// With events_every, the growth and loss tallies come from censuses at that interval
+    /// (nothing written), not from the samples.
+    long long observe_every() const override { return events_every_; }
+    void observe(Simulation& sim) override { tally(site_bond_census(sim, rule_), sim.step_index(), events_every_); }
+
+    // The event tallies go on across a continuation, from the last census's clusters, when it
+    // keeps their interval; at another interval they start afresh (tallies at two intervals
+    // would not add up to either).
     Measures saved_state() const override {
-        Measures m{{"growth_events", events_.grew}, {"loss_events", events_.shrank},
+        Measures m{{"events_interval", {double(events_interval())}},
+                   {"growth_events", events_.grew}, {"loss_events", events_.shrank},
                    {"clusters_seen", events_.seen},
                    {"growth_events_coarse", coarse_.grew}, {"loss_events_coarse", coarse_.shrank},
                    {"clusters_seen_coarse", coarse_.seen}};
@@ -306,6 +308,12 @@ public:
             if (it == state.end()) throw InputError(c_.scene() + ": the checkpoint lacks " + name);
             return it->second;
         };
+        // A checkpoint without its interval took the tallies at its samples.
+        const auto interval = state.find("events_interval");
+        const bool other_interval = interval == state.end() || interval->second.empty()
+                                        ? events_every_ > 0
+                                        : static_cast<long long>(interval->second[0]) != events_interval();
+        if (other_interval) return;  // the tallies start afresh
         events_.grew = get("growth_events");
         events_.shrank = get("loss_events");
         events_.seen = get("clusters_seen");
@@ -325,6 +333,21 @@ public:
     }
 
 private:
+    /// Steps between the censuses the event tallies compare.
+    long long events_interval() const { return events_every_ > 0 ? events_every_ : sample_every_; }
+
+    /// One census into the event tallies: compared with the last one (`interval` steps before),
+    /// and on every second regular census with the last such (the coarse tallies, twice the
+    /// interval).
+    void tally(const BondCensus& census, long long step, long long interval) {
+        if (!previous_.bodies.empty()) events_.tally(previous_, census);
+        previous_ = census;
+        if (step % interval == 0 && (step / interval) % 2 == 0) {
+            if (!previous_coarse_.bodies.empty()) coarse_.tally(previous_coarse_, census);
+            previous_coarse_ = census;
+        }
+    }
+
     /// The closed shell's members in the order a compact patch grows: from member 0, each next
     /// member is the one with the most bonds to those already taken (ties: the lowest index).
     /// A seeded cluster of n is the first n, the most strongly bound patch of its size.
@@ -384,7 +407,8 @@ private:
     bool implicit_ = false;
     std::vector<int> shell_order_;  ///< start=cluster: the seeded patch's members, in order
     long long sample_every_ = 1;
-    BondCensus previous_;  ///< at the last sample
+    long long events_every_ = 0;  ///< 0: the event tallies are taken at the samples
+    BondCensus previous_;  ///< at the last census of the tallies
     BondCensus previous_coarse_;  ///< at the last sample of the coarse tally
     ClusterEvents events_{kShell};
     ClusterEvents coarse_{kShell};  ///< from every second sample (twice the interval)
@@ -436,11 +460,15 @@ ProblemInfo capsid_assembly_info() {
                 "cluster: a compact patch of the shell of cluster_size members plus monomers")
         .integer("cluster_size", 30, 1, kShell, "1",
                  "start=cluster: members of the seeded patch (each next member the one with the "
-                 "most bonds to those before)");
+                 "most bonds to those before)")
+        .integer("events_every", 0, 0, 1e9, "steps",
+                 "steps between the cluster censuses of the growth and loss tallies (0: at the "
+                 "samples): a fine interval without writing samples; a continuation at another "
+                 "interval starts the tallies afresh");
     info.schema.structural({"capsomers", "particle_fraction", "density", "shape", "edge", "mass_ratio",
                             "attraction_range", "harmonic_range", "start", "solvent", "cluster_size"})
         .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau",
-                     "friction_translation", "friction_rotation"});
+                     "friction_translation", "friction_rotation", "events_every"});
     info.presets["tiny"] = {{"capsomers", "60"}, {"start", "shell"}, {"steps", "2000"},
                             {"sample_every", "200"}};
     // For the hysteresis (benchmarks/capsid_hysteresis.sh, with start=shell for the other side):

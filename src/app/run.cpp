@@ -151,6 +151,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
     const long long checkpoint_every = cfg.integer("checkpoint_every");
     ProgressLine progress(cfg.real("progress_interval"), sim.step_index(), end, sim.rank() == 0);
     auto sample_due = [&](long long s) { return s % every == 0 || s == n_eq || s == end; };
+    const long long observe_every = problem.observe_every();
     if (sim.step_index() == n_eq && series.empty()) {
         problem.on_equilibrated(sim);
         series.push_back(sim.measure());
@@ -178,6 +179,7 @@ double advance(Simulation& sim, Problem& problem, const RunRequest& req, io::Run
             }
             guard.after_step(sim, checkpoint);  // a checkpoint is only written from a good state
             output.on_step(sim);
+            if (observe_every > 0 && s % observe_every == 0) problem.observe(sim);
             if (sample_due(s)) {
                 last_measures = problem.measures(sim);
                 output.on_sample(t, last_measures);

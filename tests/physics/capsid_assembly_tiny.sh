@@ -14,7 +14,11 @@
 #   between two of their samples);
 #   a seeded cluster (start=cluster) is one cluster of cluster_size members: a dimer has 1 bond,
 #   the trimer is fully bonded (3), 59 members are the shell less one (150 - 5 = 145 bonds);
-#   the table1 preset starts the paper's Table 1 system (244625 particles).
+#   the table1 preset starts the paper's Table 1 system (244625 particles);
+#   cluster-event tallies taken every 25 steps between samples 100 apart (events_every) are
+#   those of samples every 25 steps, exactly (the censuses change nothing); continued at the same
+#   interval they go on as the straight run's, at another they start afresh (what they hold is
+#   then the clusters of the new censuses alone).
 # usage: capsid_assembly_tiny.sh EMERGENT MPIRUN
 set -euo pipefail
 exe=$1
@@ -43,6 +47,15 @@ for n in 2 3 59; do
   "$exe" run capsid-assembly --set progress_interval=0 --set capsomers=80 --set solvent=implicit \
     --set start=cluster --set cluster_size=$n --set steps=10 --set sample_every=10 -o "$dir/cluster$n" >/dev/null
 done
+events=(--set progress_interval=0 --set capsomers=60 --set particle_fraction=0.033 --set solvent=implicit
+        --set attraction=0.12 --set seed=7 --set steps=8000)
+"$exe" run capsid-assembly "${events[@]}" --set sample_every=25 -o "$dir/events_sampled" >/dev/null
+"$exe" run capsid-assembly "${events[@]}" --set sample_every=100 --set events_every=25 -o "$dir/events_between" >/dev/null
+"$exe" run capsid-assembly "${events[@]}" --set sample_every=100 --set events_every=25 --set steps=4000 \
+  --checkpoint-every 4000 -o "$dir/events_part" >/dev/null
+"$exe" run --restart "$dir/events_part/checkpoint.h5" --set steps=8000 -o "$dir/events_same" >/dev/null
+"$exe" run --restart "$dir/events_part/checkpoint.h5" --set steps=8000 --set events_every=50 \
+  --set sample_every=50 -o "$dir/events_other" >/dev/null
 if [ "$(tail -n 1 "$dir/straight/thermo.dat")" != "$(tail -n 1 "$dir/part/thermo.dat")" ]; then
   echo "FAIL: the continued run does not end as the straight run"; exit 1
 fi
@@ -118,6 +131,27 @@ n_table1 = json.load(open(f"{d}/table1/summary.json"))["N"]
 print(f"table1 preset: {n_table1} particles")
 if n_table1 != 120875 + 4125 * 30:
     fail.append(f"the table1 preset has {n_table1} particles, not Table 1's system (244625)")
+tallies = ("growth_events", "loss_events", "clusters_seen", "growth_events_coarse", "loss_events_coarse",
+           "clusters_seen_coarse")
+ev = {r: json.load(open(f"{d}/events_{r}/summary.json"))["scene_measures"] for r in ("sampled", "between", "same", "other")}
+print(f"event tallies every 25 steps: {sum(ev['sampled']['growth_events']):.0f} growth, "
+      f"{sum(ev['sampled']['loss_events']):.0f} loss events from samples; "
+      f"{sum(ev['between']['growth_events']):.0f}, {sum(ev['between']['loss_events']):.0f} between samples 100 apart")
+if sum(ev["sampled"]["growth_events"]) < 2:
+    fail.append("too few growth events to compare the tallies")
+if any(ev["sampled"][k] != ev["between"][k] for k in tallies):
+    fail.append("tallies between samples (events_every) differ from those of samples at that interval")
+if any(ev["same"][k] != ev["between"][k] for k in tallies):
+    fail.append("tallies continued at the same events_every differ from the straight run's")
+# Afresh at 50 steps: each census but the last counts its clusters once, so the monomers-and-all
+# seen are the clusters sampled at 4050 .. 7950 (samples every 50 steps), nothing from before.
+with h5py.File(f"{d}/events_other/" + [f for f in __import__("os").listdir(f"{d}/events_other") if f.startswith("trajectory.from") and f.endswith(".h5")][0], "r") as f:
+    steps_other = f["observables/clusters/step"][:]
+    clusters_other = np.asarray(f["observables/clusters/value"][:], float).ravel()
+expected_seen = clusters_other[(steps_other >= 4050) & (steps_other <= 7950)].sum()
+print(f"continued at events_every=50: clusters seen {sum(ev['other']['clusters_seen']):.0f}, the new censuses' {expected_seen:.0f}")
+if sum(ev["other"]["clusters_seen"]) != expected_seen:
+    fail.append("tallies continued at another events_every did not start afresh")
 if fail:
     sys.exit("FAIL: " + "; ".join(fail))
 print("ok")
