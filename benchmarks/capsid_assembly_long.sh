@@ -24,7 +24,10 @@ cd "$(dirname "$0")/.."
 what=${1:-}
 shift || true
 series_py='
-import glob, h5py, numpy as np, os, re
+import os, sys
+sys.path.insert(0, "scripts")
+import h5py, numpy as np
+from emergentpy import Run
 def wilson(g, t):
     """P = g / t with its 95 % Wilson interval (None for t = 0)."""
     if t == 0:
@@ -47,25 +50,10 @@ def step_table(tally, interval):
             cells += [f"{g:.0f}", f"{l:.0f}", "-" if w is None else f"{w[0]:.3f} ({w[1]:.3f}-{w[2]:.3f})"]
         print("| " + " | ".join(cells) + " |")
 def series(run, name):
-    """An observable over a run and its continuations, in time order (a later file wins)."""
-    files = [os.path.join(run, "trajectory.h5")] + sorted(
-        glob.glob(os.path.join(run, "trajectory.from*.h5")),
-        key=lambda f: int(re.search(r"from(\d+)", f).group(1)))
-    t_out, v_out = None, None
-    for f in files:
-        if not os.path.exists(f):
-            continue
-        with h5py.File(f, "r") as h:
-            if f"observables/{name}" not in h:
-                continue
-            t = h[f"observables/{name}/time"][:]
-            v = np.asarray(h[f"observables/{name}/value"][:], float).reshape(len(t), -1)
-        if t_out is None:
-            t_out, v_out = t, v
-        elif len(t):  # a continuation replaces what the earlier file held from its start on
-            keep = t_out < t[0]
-            t_out, v_out = np.concatenate([t_out[keep], t]), np.concatenate([v_out[keep], v])
-    return t_out, v_out
+    """An observable over a run and its continuations (emergentpy reads them as one), as rows."""
+    t, v = Run(run).observable(name)
+    t = np.asarray(t, float).reshape(-1)
+    return t, np.asarray(v, float).reshape(len(t), -1)
 '
 case "$what" in
 run)
