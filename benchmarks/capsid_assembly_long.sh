@@ -27,15 +27,7 @@ series_py='
 import os, sys
 sys.path.insert(0, "scripts")
 import h5py, numpy as np
-from emergentpy import Run
-def wilson(g, t):
-    """P = g / t with its 95 % Wilson interval (None for t = 0)."""
-    if t == 0:
-        return None
-    z, p = 1.96, g / t
-    centre = (p + z * z / (2 * t)) / (1 + z * z / t)
-    half = z * np.sqrt(p * (1 - p) / t + z * z / (4 * t * t)) / (1 + z * z / t)
-    return p, max(0.0, centre - half), min(1.0, centre + half)
+from emergentpy import Run, wilson_interval as wilson
 def step_table(tally, interval):
     """P_n = g / (g + l) by size group, from tallies (name -> 60 counts) at interval and twice it."""
     tau = 0.005 * interval

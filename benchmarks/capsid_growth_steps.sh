@@ -42,7 +42,9 @@ for n in $sizes; do
   done
 done
 /usr/bin/python3 - "$out" "$sizes" "$seeds" "$sample" <<'PY'
-import json, math, sys
+import json, sys
+sys.path.insert(0, "scripts")
+from emergentpy import wilson_interval as wilson
 out, sizes, seeds, sample = sys.argv[1], sys.argv[2].split(), sys.argv[3].split(), int(sys.argv[4])
 # Tallies by origin: the monomer runs (dimers formed by chance encounters) and the seeded runs
 # (whose small clusters are mostly the seed's fragments, their lost member still nearby);
@@ -64,15 +66,6 @@ for n in sizes:
                     grew[origin][tally][k] += m["growth_events" + suffix][k]
                     shrank[origin][tally][k] += m["loss_events" + suffix][k]
                     seen[origin][tally][k] += m["clusters_seen" + suffix][k]
-
-def wilson(g, t):
-    """P = g / t with its 95 % Wilson interval (exact enough for a few events; t = 0: none)."""
-    if t == 0:
-        return None
-    z, p = 1.96, g / t
-    centre = (p + z * z / (2 * t)) / (1 + z * z / t)
-    half = z * math.sqrt(p * (1 - p) / t + z * z / (4 * t * t)) / (1 + z * z / t)
-    return p, max(0.0, centre - half), min(1.0, centre + half)
 
 tau = 0.005 * sample
 

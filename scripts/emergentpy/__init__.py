@@ -168,3 +168,14 @@ def exponential_growth(t, amplitude, lo=0.03, hi=0.15):
     if len(used) < 2:
         return None, used
     return float(np.polyfit(t[used], np.log(amplitude[used]), 1)[0]), used
+
+
+def wilson_interval(successes, trials, z=1.96):
+    """A proportion successes / trials with its Wilson score interval (95 % for z = 1.96; exact
+    enough for a few events): (p, low, high), or None for no trials."""
+    if trials == 0:
+        return None
+    p = successes / trials
+    centre = (p + z * z / (2 * trials)) / (1 + z * z / trials)
+    half = z * np.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / (1 + z * z / trials)
+    return p, max(0.0, centre - half), min(1.0, centre + half)
