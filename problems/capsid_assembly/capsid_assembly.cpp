@@ -257,7 +257,9 @@ public:
     }
 
     Measures measures(Simulation& sim) override {
-        const BondCensus census = site_bond_census(sim, rule_);
+        // At a step observe() has just taken, its census is the last one tallied.
+        const bool observed = events_every_ > 0 && sim.step_index() % events_every_ == 0 && !previous_.bodies.empty();
+        const BondCensus census = observed ? previous_ : site_bond_census(sim, rule_);
         int dimers = 0;
         for (const int n : census.cluster_size) dimers += n == 2;
         const KineticParts k = sim.kinetic_parts();

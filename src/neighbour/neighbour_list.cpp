@@ -34,6 +34,29 @@ static bool species_described(const ParticleStore& store, int n_species) {
                        [&](int s) { return s >= 0 && s < n_species; });
 }
 
+// A squared range for the search on the cells' single-precision copy: widened by the copy's
+// rounding and rounded up, so that no pair in range is missed.
+static float binned_limit(double range, const CellList& cells) {
+    const double r = range + cells.binned_distance_error();
+    return std::nextafter(static_cast<float>(r * r), 1e30f);
+}
+
+std::vector<float> NeighbourList::binned_pair_limits(const CellList& cells) const {
+    const std::size_t n = std::size_t(n_range_species_);
+    std::vector<float> limit(n * n, -1.0f);
+    for (std::size_t k = 0; k < limit.size(); ++k)
+        if (range_table_[k] > 0) limit[k] = binned_limit(std::sqrt(range_table_[k]), cells);
+    return limit;
+}
+
+std::vector<Int3> NeighbourList::species_reach(const ParticleStore& store, const CellIndex& grid) const {
+    const unsigned n = static_cast<unsigned>(n_range_species_);
+    std::vector<Int3> reach(n, grid.reach);
+    if (n && species_described(store, n_range_species_))
+        for (unsigned s = 0; s < n; ++s) reach[s] = grid.reach_of(range_table_[n * n + s]);
+    return reach;
+}
+
 void NeighbourList::build_full(const ParticleStore& store, const CellList& cells) {
     build_general(store, cells, true);
 }
@@ -50,9 +73,7 @@ void NeighbourList::build_general(const ParticleStore& store, const CellList& ce
     neighbour_.clear();
     const CellIndex& grid = cells.index();
     // The reach of a search from each species (or the grid's, for all).
-    std::vector<Int3> reach(n_species, grid.reach);
-    if (species && species_described(store, n_range_species_))
-        for (unsigned s = 0; s < n_species; ++s) reach[s] = grid.reach_of(range_table_[n_species * n_species + s]);
+    const std::vector<Int3> reach = species_reach(store, grid);
     for (std::size_t i = 0; i < n_owned; ++i) {
         const unsigned si = species ? static_cast<unsigned>(species[i]) : 0;
         auto consider = [&](std::uint32_t j) {
@@ -108,20 +129,12 @@ void NeighbourList::build_general_half(const ParticleStore& store, const CellLis
     // The search runs on the cells' single-precision copy, its ranges widened by the copy's
     // rounding (as in build()): a pair a little beyond its range may be listed; its force is 0.
     const BinnedPoint* xb = cells.binned_positions();
-    const double padded = list_cutoff() + cells.binned_distance_error();
-    const float r2f = std::nextafter(static_cast<float>(padded * padded), 1e30f);
+    const float r2f = binned_limit(list_cutoff(), cells);
     const unsigned n_species = static_cast<unsigned>(n_range_species_);
     const int* species = n_species ? store.species.data() : nullptr;
-    std::vector<float> pair_r2f(std::size_t(n_species) * n_species, -1.0f);
-    for (std::size_t k = 0; k < pair_r2f.size(); ++k)
-        if (range_table_[k] > 0) {
-            const double r = std::sqrt(range_table_[k]) + cells.binned_distance_error();
-            pair_r2f[k] = std::nextafter(static_cast<float>(r * r), 1e30f);
-        }
+    const std::vector<float> pair_r2f = binned_pair_limits(cells);
     const CellIndex& grid = cells.index();
-    std::vector<Int3> reach(n_species, grid.reach);
-    if (species && species_described(store, n_range_species_))
-        for (unsigned s = 0; s < n_species; ++s) reach[s] = grid.reach_of(range_table_[n_species * n_species + s]);
+    const std::vector<Int3> reach = species_reach(store, grid);
     const Int3 shape = grid.n;
     // Species and body by slot: the candidates' are read in slot order, not gathered by index.
     const std::size_t n_slots = cells.first(n_cells);
@@ -229,16 +242,10 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     // The search runs on the cells' single-precision copy, its range widened by the copy's
     // rounding so that no pair in range is missed (benchmarks/RESULTS.md, "Memory").
     const BinnedPoint* xb = cells.binned_positions();
-    const double padded = list_cutoff() + cells.binned_distance_error();
-    const float r2f = std::nextafter(static_cast<float>(padded * padded), 1e30f);
+    const float r2f = binned_limit(list_cutoff(), cells);
     const unsigned n_species = static_cast<unsigned>(n_range_species_);
     const int* species = n_species ? store.species.data() : nullptr;
-    std::vector<float> pair_r2f(std::size_t(n_species) * n_species, -1.0f);
-    for (std::size_t k = 0; k < pair_r2f.size(); ++k)
-        if (range_table_[k] > 0) {
-            const double r = std::sqrt(range_table_[k]) + cells.binned_distance_error();
-            pair_r2f[k] = std::nextafter(static_cast<float>(r * r), 1e30f);
-        }
+    const std::vector<float> pair_r2f = binned_pair_limits(cells);
     // Stencil: the cells within reach as offsets of the linear index, in increasing order, so
     // that neighbouring cells of one row (consecutive indices, consecutive slots) merge into
     // one range below. Inner cells always have all of them: the grid's ghost shell is at least

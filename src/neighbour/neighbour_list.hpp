@@ -81,6 +81,11 @@ public:
 private:
     void build_general(const ParticleStore& store, const CellList& cells, bool full);
     void build_general_half(const ParticleStore& store, const CellList& cells);
+    /// The squared ranges by species pair for the single-precision search (-1: never listed).
+    std::vector<float> binned_pair_limits(const CellList& cells) const;
+    /// How far a search from each species reaches (its longest range; the grid's when some
+    /// particle's species has no row).
+    std::vector<Int3> species_reach(const ParticleStore& store, const CellIndex& grid) const;
     void keep_reference(const ParticleStore& store, std::size_t n_owned);
 
     double cutoff_ = 0, skin_ = 0;
