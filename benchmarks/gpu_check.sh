@@ -1,6 +1,5 @@
 #!/usr/bin/env bash
-# The one script a lent GPU machine runs (at most 5 minutes on one H100/H200: the parts' limits
-# add up to 300 s), from the bundle
+# The one script a lent GPU machine runs (at most 5 minutes on one H100/H200), from the bundle
 # that benchmarks/gpu_bundle.sh packed and tried here:
 #   tests       gpu_tests: the execution layer's CUDA reductions, scans and sorts against the
 #               host's; the engine on cuda (Simulation, backend=cuda) against an all-pairs
@@ -18,9 +17,15 @@
 #   throughput  WCA at rho 0.8, 1 million atoms by `emergent run lj-fluid backend=cuda`, and
 #               where the bundle has it (REFERENCE=1 benchmarks/gpu_bundle.sh) by the separate
 #               pair system the engine replaced (3.7e9 atom-steps/s on an H100: the figure the
-#               engine must keep); taylor-couette paper, set-up plus 300 steps on cuda. The
-#               parts' limits add up to 300 s.
-# usage: bash benchmarks/gpu_check.sh [--only PART] [--bundle DIR]
+#               engine must keep); taylor-couette paper, rayleigh-benard medium and
+#               rotating-drum short, set-up plus a few hundred steps on cuda, with the device
+#               memory per particle
+#   scaling     weak scaling of lj-fluid on the host back end, 1 to 16 ranks (the machine's 16
+#               cores), in the time left of the 5 minutes (the other parts' limits add up to
+#               295 s; most finish well inside them)
+# A failed device test or run is repeated with CUDA_LAUNCH_BLOCKING=1, so the error names the
+# loop's functor.
+# usage: bash benchmarks/gpu_check.sh [--only tests|scenes|sanitizer|throughput|scaling] [--bundle DIR]
 #   DIR defaults to gpu_bundle/, else gpu_bundle.tar.xz is unpacked (what travels).
 # The log goes to $OUT/gpu_check.log where the device tool sets OUT (copy it to
 # benchmarks/logs/), else to benchmarks/logs/gpu_check_<date>.log. Each part has its own time
@@ -30,12 +35,12 @@ cd "$(dirname "$0")/.."
 only="" bundle=gpu_bundle
 while [ $# -gt 0 ]; do
   case $1 in
-    --only) only=${2:?--only needs tests, scenes, sanitizer or throughput}; shift 2 ;;
+    --only) only=${2:?--only needs tests, scenes, sanitizer, throughput or scaling}; shift 2 ;;
     --bundle) bundle=${2:?--bundle needs a directory}; shift 2 ;;
     *) echo "gpu_check.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
-case $only in ""|tests|scenes|sanitizer|throughput) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
+case $only in ""|tests|scenes|sanitizer|throughput|scaling) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
 if [ ! -d "$bundle" ] && [ -f "$bundle.tar.xz" ]; then
   mkdir -p /tmp/emergent_bundle && tar -xJf "$bundle.tar.xz" -C /tmp/emergent_bundle ||
     { echo "gpu_check.sh: cannot unpack $bundle.tar.xz" >&2; exit 2; }
@@ -58,6 +63,7 @@ log=${log:-benchmarks/logs/gpu_check_$(date -u +%Y-%m-%d).log}
 mkdir -p "$(dirname "$log")"
 exec > >(tee "$log") 2>&1
 
+script_start=$(date +%s)
 echo "# gpu_check.sh ${only:-all parts}; $(date -u +%FT%TZ)"
 sed 's/^/# bundle: /' "$bundle/MANIFEST" | head -n 3
 nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv,noheader 2>&1 |
@@ -85,6 +91,14 @@ device_tests() {
   out=$("$bin/gpu_tests" --gtest_brief=1 --gtest_filter='-*RefusesClearly*' "$@" 2>&1)
   rc=$?
   echo "$out"
+  # A kernel's error is sticky: the tests after the first failure fail with it. Each failed
+  # test again alone, with blocking launches, so the error names the loop (its functor).
+  local failed t
+  failed=$(sed -n 's/^\[  FAILED  \] \([A-Za-z0-9_/.]*\).*/\1/p' <<<"$out" | sort -u | head -n 6)
+  for t in $failed; do
+    echo "### $t alone, CUDA_LAUNCH_BLOCKING=1:"
+    CUDA_LAUNCH_BLOCKING=1 "$bin/gpu_tests" --gtest_brief=1 --gtest_filter="$t" 2>&1 | tail -n 8
+  done
   if grep -q "SKIPPED" <<<"$out"; then
     local driver
     driver=$(head -n 1 /proc/driver/nvidia/version 2>/dev/null)
@@ -97,7 +111,7 @@ device_tests() {
 export -f device_tests
 export bin
 if [ -z "$only" ] || [ "$only" = tests ]; then
-  part "gpu tests" 60 device_tests
+  part "gpu tests" 45 device_tests
 fi
 
 # thermo.dat of run A against run B: per row "step:largest relative difference" of the
@@ -119,8 +133,18 @@ scene_checks() {
   dir=$(mktemp -d)
   # From step 0 (no equilibration), so the first row compares forces and energies of the same
   # state: only the order of additions differs there.
-  run1() { emergent run "$@" --preset tiny --set equilibration_steps=0 --set progress_interval=0 \
-             >/dev/null 2>"$dir/err" || { cat "$dir/err"; return 1; }; }
+  # A failed device run is run again with blocking launches, so its error names the loop.
+  run1() {
+    timeout 40 emergent run "$@" --preset tiny --set equilibration_steps=0 --set progress_interval=0 \
+      >/dev/null 2>"$dir/err" && return 0
+    tail -n 3 "$dir/err"
+    if grep -q "backend=$dev" <<<"$*"; then
+      CUDA_LAUNCH_BLOCKING=1 timeout 40 emergent run "$@" --preset tiny --set equilibration_steps=0 \
+        --set progress_interval=0 -o "$dir/blocking" >/dev/null 2>"$dir/err"
+      echo "  again with CUDA_LAUNCH_BLOCKING=1: exit $?: $(tail -n 2 "$dir/err")"
+    fi
+    return 1
+  }
   for scene in lj-fluid granular-bed planar-couette rayleigh-benard rotating-drum taylor-couette \
                vibrated-sawtooth capsid-assembly; do
     layout=full  # every scene's force terms have a back-end form
@@ -139,7 +163,7 @@ scene_checks() {
   done
   # 2 ranks sharing the GPU against 1 rank (a different summation order: round-off apart).
   for scene in lj-fluid taylor-couette; do
-    mpirun -q --oversubscribe -np 2 emergent run "$scene" --preset tiny --set progress_interval=0 \
+    timeout 40 mpirun -q --oversubscribe -np 2 emergent run "$scene" --preset tiny --set progress_interval=0 \
       --set equilibration_steps=0 \
       --set backend=$dev --set neighbour_list=full -o "$dir/$scene.$dev.np2" >/dev/null 2>"$dir/err" ||
       { cat "$dir/err"; echo "$scene: FAIL on 2 ranks"; rc=1; continue; }
@@ -151,16 +175,16 @@ scene_checks() {
   # A checkpoint written on cuda, continued on host, against a straight host run.
   local restart=(--set n_cells=6 --set equilibration_steps=100 --set sample_every=20
                  --set progress_interval=0 --set neighbour_list=full)
-  emergent run lj-fluid "${restart[@]}" --set steps=300 --set backend=host -o "$dir/straight" >/dev/null 2>&1 &&
-  emergent run lj-fluid "${restart[@]}" --set steps=150 --set backend=$dev --checkpoint-every 250 \
+  timeout 40 emergent run lj-fluid "${restart[@]}" --set steps=300 --set backend=host -o "$dir/straight" >/dev/null 2>&1 &&
+  timeout 40 emergent run lj-fluid "${restart[@]}" --set steps=150 --set backend=$dev --checkpoint-every 250 \
     -o "$dir/across" >/dev/null 2>&1 &&
-  emergent run --restart "$dir/across/checkpoint.h5" --set steps=300 --set checkpoint_every=0 \
+  timeout 40 emergent run --restart "$dir/across/checkpoint.h5" --set steps=300 --set checkpoint_every=0 \
     --set backend=host -o "$dir/across" >/dev/null 2>&1 ||
     { echo "restart across back ends: FAIL (a run failed)"; rc=1; }
   echo "restart $dev -> host: last rows $(tail -n 1 "$dir/straight/thermo.dat" | cut -d' ' -f1-6) |" \
        "$(tail -n 1 "$dir/across/thermo.dat" | cut -d' ' -f1-6)"
   # A guard firing on the device: exit 3, one line, the last good state kept.
-  emergent run lj-fluid --preset tiny --set backend=$dev --set guard.max_force=1 -o "$dir/guard" \
+  timeout 40 emergent run lj-fluid --preset tiny --set backend=$dev --set guard.max_force=1 -o "$dir/guard" \
     >/dev/null 2>"$dir/err"
   local code=$?
   if [ $code -eq 3 ] && grep -q "exceeds guard.max_force" "$dir/err" && [ -f "$dir/guard/last_good.h5" ]; then
@@ -177,7 +201,7 @@ dev=${GPU_CHECK_BACKEND:-cuda}
 export -f compare_thermo scene_checks
 export dev
 if [ -z "$only" ] || [ "$only" = scenes ]; then
-  part "scenes host vs $dev" 90 scene_checks
+  part "scenes host vs $dev" 75 scene_checks
 fi
 
 if [ -z "$only" ] || [ "$only" = sanitizer ]; then
@@ -187,37 +211,85 @@ if [ -z "$only" ] || [ "$only" = sanitizer ]; then
   else
     # The small cases only (tens of thousands of particles): the sanitizer slows kernels 10-100x.
     for tool in memcheck racecheck; do
-      part "sanitizer $tool" 20 "$sanitizer" --tool "$tool" --error-exitcode 99 \
+      part "sanitizer $tool" 15 "$sanitizer" --tool "$tool" --error-exitcode 99 \
         "$bin/gpu_tests" --gtest_brief=1 --gtest_filter='DeviceFunctors.*:CudaEngine.StopsWithAClearMessageWhenTheRunBlowsUp'
     done
-    part "sanitizer memcheck, scenes" 25 bash -c 'for s in lj-fluid rayleigh-benard taylor-couette; do
+    part "sanitizer memcheck, scenes" 20 bash -c 'for s in lj-fluid rayleigh-benard taylor-couette; do
       "$0" --tool memcheck --error-exitcode 99 emergent run $s --preset tiny --set backend=cuda \
         --set neighbour_list=full --set steps=100 --set progress_interval=0 -o /tmp/san.$s >/dev/null || exit; done' "$sanitizer"
   fi
 fi
 
 if [ -z "$only" ] || [ "$only" = throughput ]; then
-  engine_wca() {
-    emergent run lj-fluid --set n_cells=63 --set thermostat=none --set equilibration_steps=100 \
-      --set steps=500 --set sample_every=500 --set guard.every=500 --set progress_interval=0 \
-      --set backend=cuda --set neighbour_list=full --summary-json /tmp/engine_wca.json >/dev/null &&
-    grep -E '"(atom_steps_per_second|bytes_per_particle|neighbour_rebuilds|seconds_[a-z]+)"' /tmp/engine_wca.json
+  # emergent run on cuda, its rate, memory and time split from the summary.
+  engine_case() {  # JSON SCENE_ARGS...
+    local json=$1
+    shift
+    emergent run "$@" --set progress_interval=0 --set backend=cuda --set neighbour_list=full \
+      --summary-json "$json" -o "/tmp/throughput.$(basename "$json" .json)" >/dev/null || return
+    grep -E '"(N|wall_seconds|atom_steps_per_second|device_bytes_per_particle|bytes_per_particle|neighbour_rebuilds|seconds_(force|neighbour|integrate|communicate))"' "$json" | tr -d ' \n'
+    echo
   }
-  export -f engine_wca
+  export -f engine_case
   # One round each within the 5 minutes (the ratio claim needs alternating rounds: a later
   # check with more device time).
   if [ -x "$bin/emergent-gpu-bench" ]; then
-    part "throughput WCA 1M double, the separate path the engine replaced" 25 "$bin/emergent-gpu-bench" \
+    part "throughput WCA 1M double, the separate path the engine replaced" 20 "$bin/emergent-gpu-bench" \
       --cells 63 --density 0.8 --skin 0.3 --steps 500 --warmup 500 --repeats 3 --precision double
   else
     echo "## throughput of the separate path: not in this bundle (REFERENCE=1 benchmarks/gpu_bundle.sh)"
   fi
-  part "throughput WCA 1M double, Simulation backend=cuda" 30 engine_wca
-  part "throughput taylor-couette paper backend=cuda (set-up + 300 steps)" 30 emergent run \
+  part "throughput WCA 1M double, Simulation backend=cuda" 25 engine_case /tmp/wca.json lj-fluid \
+    --set n_cells=63 --set thermostat=none --set equilibration_steps=100 --set steps=500 \
+    --set sample_every=500 --set guard.every=500
+  part "throughput taylor-couette paper (set-up + 300 steps)" 25 engine_case /tmp/tc.json \
     taylor-couette --preset paper --set steps=300 --set sample_every=300 --set fields.interval=0 \
-    --set output.every=0 --set progress_interval=0 --set backend=cuda --set neighbour_list=full \
-    --summary-json /tmp/taylor-couette.json
-  grep -hE '"(N|atom_steps_per_second|bytes_per_particle|wall_seconds)"' /tmp/taylor-couette.json 2>/dev/null
+    --set output.every=0
+  part "throughput rayleigh-benard medium (set-up + 200 steps)" 30 engine_case /tmp/rb.json \
+    rayleigh-benard --preset medium --set steps=200 --set sample_every=200 --set fields.interval=0 \
+    --set output.every=0
+  part "throughput rotating-drum short (set-up + 300 steps)" 25 engine_case /tmp/drum.json \
+    rotating-drum --preset short --set steps=300 --set sample_every=300 --set output.every=0 \
+    --set checkpoint_every=0
+fi
+
+# Weak scaling of lj-fluid on the host back end, 1 to 16 ranks (one per core here: real
+# scaling, unlike 2 cores oversubscribed), 16384 atoms per rank, rounds in alternating order
+# for the time left of the 5 minutes. The runs' JSON go to $OUT/scaling_weak;
+# TABLE_ONLY=1 CORES=<cores> OUT=<that folder> ROUNDS=<rounds> benchmarks/scaling.sh weak
+# lj-fluid 1 2 4 8 16 -- --set n_cells=16 tabulates them.
+scaling_runs() {  # SECONDS_LEFT
+  local deadline=$(( $(date +%s) + $1 )) out=${OUT:-/tmp}/scaling_weak round np cells t0 took=0
+  local ranks=(1 2 4 8 16)
+  [ "$(nproc)" -ge 16 ] || ranks=(1 2)
+  mkdir -p "$out"
+  for round in 1 2 3 4 5; do
+    t0=$(date +%s)
+    [ $(( t0 + took + 5 )) -lt "$deadline" ] || break
+    local order=("${ranks[@]}")
+    [ $((round % 2)) = 0 ] && order=($(printf '%s\n' "${ranks[@]}" | sort -rn))
+    for np in "${order[@]}"; do
+      cells=$(awk -v n="$np" 'BEGIN { printf "%d", 16 * n ^ (1 / 3) + 0.5 }')
+      mpirun -q --bind-to core -np "$np" emergent run lj-fluid --set n_cells="$cells" \
+        --set backend=host --set equilibration_steps=200 --set steps=800 --set progress_interval=0 \
+        --summary-json "$out/np${np}_round$round.json" >/dev/null || return
+      grep -hoE '"(N|grid|wall_seconds|atom_steps_per_second)": [^,]*' "$out/np${np}_round$round.json" |
+        tr '\n' ' ' | sed "s/^/round $round, $np ranks: /"
+      echo
+    done
+    took=$(( $(date +%s) - t0 ))
+    echo "rounds complete: $round"
+  done
+}
+export -f scaling_runs
+if [ -z "$only" ] || [ "$only" = scaling ]; then
+  left=$(( 300 - ($(date +%s) - script_start) ))
+  [ -n "$only" ] && left=120
+  if [ $left -ge 20 ]; then
+    part "weak scaling lj-fluid, host back end, 16384 atoms per rank" $left scaling_runs $((left - 5))
+  else
+    echo "## weak scaling: not run ($left s left of the 5 minutes)"
+  fi
 fi
 echo "# gpu_check.sh: exit $status"
 exit $status

@@ -11,6 +11,9 @@
 #     ranks take n_cells * ranks^(1/3), rounded: N per rank as close as fcc cells allow)
 #   ROUNDS (default 3), STEPS (default 2000, after EQUILIBRATION 500 unmeasured), OUT (a folder
 #   for the runs' JSON and the plot). Weak scaling scales lj-fluid's n_cells only.
+#   TABLE_ONLY=1 runs nothing and tabulates the np<R>_round<K>.json already in OUT (e.g. those
+#   benchmarks/gpu_check.sh's scaling part brought back from a lent machine), with CORES the
+#   core count of the machine that ran them.
 # More ranks than cores are oversubscribed: such points measure the code's overheads, not its
 # scaling, and the table says so.
 set -euo pipefail
@@ -35,12 +38,17 @@ fi
 rounds=${ROUNDS:-3} steps=${STEPS:-2000} eq=${EQUILIBRATION:-500}
 out=${OUT:-$work/scaling}
 mkdir -p "$out"
-cores=$(nproc)
+cores=${CORES:-$(nproc)}
 base_cells=$(printf '%s\n' "${args[@]}" | sed -n 's/^n_cells=//p' | tail -n 1)
 base_cells=${base_cells:-12}
 echo "# scaling.sh $mode $scene ${ranks[*]} -- ${args[*]}; rounds $rounds, steps $steps after $eq; $(date -u +%FT%TZ)"
-echo "# $cores cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1); commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems decomposition || echo ' (modified)')"
+if [ -n "${TABLE_ONLY:-}" ]; then
+  echo "# tabulating the runs in $out, made on a machine with $cores cores (its log says which)"
+else
+  echo "# $cores cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1); commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include problems decomposition || echo ' (modified)')"
+fi
 for ((round = 1; round <= rounds; ++round)); do
+  [ -n "${TABLE_ONLY:-}" ] && break
   order=("${ranks[@]}")
   if [ $((round % 2)) = 0 ]; then  # alternate which rank count runs first
     order=()

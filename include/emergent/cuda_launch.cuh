@@ -30,6 +30,19 @@ inline void cuda_check(cudaError_t status, const char* where) {
 
 #define EMERGENT_CUDA_CHECK(call) ::emergent::exec::cuda_check((call), EMERGENT_HERE)
 
+/// The functor's full type as the compiler spells it (in this function's signature).
+template <class Functor>
+const char* functor_name() {
+    return __PRETTY_FUNCTION__;
+}
+
+/// After a launch: its error, or with CUDA_LAUNCH_BLOCKING=1 the kernel's own, named by the
+/// functor's type, so a failing loop is found without a debugger.
+template <class Functor>
+void check_launch() {
+    cuda_check(cudaGetLastError(), functor_name<Functor>());
+}
+
 template <class Functor>
 __global__ void for_each_kernel(std::size_t n, Functor f) {
     const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
@@ -41,7 +54,7 @@ void for_each(Cuda backend, std::size_t n, const Functor& f) {
     if (n == 0) return;
     const unsigned blocks = static_cast<unsigned>((n + backend.block_size - 1) / backend.block_size);
     for_each_kernel<<<blocks, backend.block_size, 0, backend.stream>>>(n, f);
-    EMERGENT_CUDA_CHECK(cudaGetLastError());
+    check_launch<Functor>();
 }
 
 /// v from the lane `offset` above, within segments of Width lanes (any trivially copyable v).
@@ -102,7 +115,7 @@ void for_each_split(Cuda backend, std::size_t n, int lanes, const Functor& f) {
         for_each_split_kernel<decltype(width)::value>
             <<<blocks_for(backend, n, lanes), backend.block_size, 0, backend.stream>>>(n, f);
     });
-    EMERGENT_CUDA_CHECK(cudaGetLastError());
+    check_launch<Functor>();
 }
 
 }  // namespace emergent::exec

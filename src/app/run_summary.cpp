@@ -10,6 +10,7 @@
 
 #include "decomposition/reductions.hpp"
 #include "emergent/execution.hpp"
+#include "gpu/device_memory_use.hpp"
 #include "observe/block_average.hpp"
 
 namespace emergent::app {
@@ -140,6 +141,12 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     };
     field("transfers", "{\"arrays\": " + total(moved.arrays) + ", \"array_bytes\": " +
                            total(moved.array_bytes) + ", \"scalars\": " + total(moved.scalars) + "}");
+    // Device memory the run holds, all ranks (with one device per rank; ranks sharing one
+    // count each other's too).
+    if (sim.backend() == Backend::Cuda)
+        field("device_bytes_per_particle",
+              number(static_cast<double>(decomp::sum(
+                         comm, static_cast<long long>(gpu::run_device_bytes()))) / n));
     field("peak_rss_bytes", std::to_string(rss));
     field("bytes_per_particle", number(rss / n), false);
     json << "}\n";

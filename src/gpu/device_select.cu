@@ -10,6 +10,7 @@
 
 #include "emergent/gpu.hpp"
 #include "emergent/cuda_launch.cuh"
+#include "gpu/device_memory_use.hpp"
 
 namespace emergent::gpu {
 
@@ -35,6 +36,9 @@ int device_count() {
     throw std::runtime_error(std::string("CUDA cannot count devices: ") + cudaGetErrorString(status));
 }
 
+std::size_t memory_at_selection = 0;
+bool selected = false;
+
 }  // namespace
 
 bool device_present() { return device_count() > 0; }
@@ -51,6 +55,11 @@ DeviceInfo select_device() {
     info.name = prop.name;
     info.multiprocessors = prop.multiProcessorCount;
     info.memory_bytes = prop.totalGlobalMem;
+    if (!selected) {
+        EMERGENT_CUDA_CHECK(cudaFree(nullptr));  // creates the context, so its memory is counted
+        memory_at_selection = device_memory_in_use();
+        selected = true;
+    }
     return info;
 }
 
@@ -58,6 +67,12 @@ std::size_t device_memory_in_use() {
     std::size_t free = 0, total = 0;
     EMERGENT_CUDA_CHECK(cudaMemGetInfo(&free, &total));
     return total - free;
+}
+
+std::size_t run_device_bytes() {
+    if (!selected) return 0;
+    const std::size_t now = device_memory_in_use();
+    return now > memory_at_selection ? now - memory_at_selection : 0;
 }
 
 }  // namespace emergent::gpu

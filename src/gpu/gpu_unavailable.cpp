@@ -4,6 +4,7 @@
 
 #include "emergent/gpu.hpp"
 #include "execution/array_memory.hpp"
+#include "gpu/device_memory_use.hpp"
 
 namespace emergent::gpu {
 
@@ -17,6 +18,7 @@ namespace {
 bool device_present() { return false; }
 DeviceInfo select_device() { refuse(); }
 std::size_t device_memory_in_use() { refuse(); }
+std::size_t run_device_bytes() { return 0; }
 
 }  // namespace emergent::gpu
 
