@@ -25,7 +25,10 @@
 #               295 s; most finish well inside them)
 # A failed device test or run is repeated with CUDA_LAUNCH_BLOCKING=1, so the error names the
 # loop's functor.
-# usage: bash benchmarks/gpu_check.sh [--only tests|scenes|sanitizer|throughput|scaling] [--bundle DIR]
+#   profile     (only when asked for: --only profile) the throughput cases with
+#               EMERGENT_PROFILE=1: the device's time by loop, reduction, scan, sort and copy
+# usage: bash benchmarks/gpu_check.sh [--only tests|scenes|sanitizer|throughput|scaling|profile]
+#        [--bundle DIR]
 #   DIR defaults to gpu_bundle/, else gpu_bundle.tar.xz is unpacked (what travels).
 # The log goes to $OUT/gpu_check.log where the device tool sets OUT (copy it to
 # benchmarks/logs/), else to benchmarks/logs/gpu_check_<date>.log. Each part has its own time
@@ -35,12 +38,12 @@ cd "$(dirname "$0")/.."
 only="" bundle=gpu_bundle
 while [ $# -gt 0 ]; do
   case $1 in
-    --only) only=${2:?--only needs tests, scenes, sanitizer, throughput or scaling}; shift 2 ;;
+    --only) only=${2:?--only needs tests, scenes, sanitizer, throughput, scaling or profile}; shift 2 ;;
     --bundle) bundle=${2:?--bundle needs a directory}; shift 2 ;;
     *) echo "gpu_check.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
-case $only in ""|tests|scenes|sanitizer|throughput|scaling) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
+case $only in ""|tests|scenes|sanitizer|throughput|scaling|profile) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
 if [ ! -d "$bundle" ] && [ -f "$bundle.tar.xz" ]; then
   mkdir -p /tmp/emergent_bundle && tar -xJf "$bundle.tar.xz" -C /tmp/emergent_bundle ||
     { echo "gpu_check.sh: cannot unpack $bundle.tar.xz" >&2; exit 2; }
@@ -58,8 +61,8 @@ bundle=$(realpath "$bundle")
 # shellcheck source=/dev/null
 source "$bundle/bundle_env.sh"
 bin=$bundle/bin
-log=${OUT:+$OUT/gpu_check.log}
-log=${log:-benchmarks/logs/gpu_check_$(date -u +%Y-%m-%d).log}
+log=${OUT:+$OUT/gpu_check${only:+_$only}.log}
+log=${log:-benchmarks/logs/gpu_check${only:+_$only}_$(date -u +%Y-%m-%d).log}
 mkdir -p "$(dirname "$log")"
 exec > >(tee "$log") 2>&1
 
@@ -253,6 +256,29 @@ if [ -z "$only" ] || [ "$only" = throughput ]; then
     --set checkpoint_every=0
 fi
 
+# Where the device's time goes (only with --only profile: each call is timed alone, so the run
+# is slower): the throughput cases with EMERGENT_PROFILE=1, the table of loops, reductions,
+# scans, sorts and copies by functor, each beside the case's unprofiled rate above.
+if [ "$only" = profile ]; then
+  profile_case() {  # NAME SCENE_ARGS...
+    local name=$1
+    shift
+    EMERGENT_PROFILE=1 emergent run "$@" --set progress_interval=0 --set backend=cuda \
+      --set neighbour_list=full --summary-json "/tmp/profile.$name.json" -o "/tmp/profile.$name" \
+      2>&1 >/dev/null | head -n 40
+    grep -hoE '"(N|steps|equilibration_steps|neighbour_rebuilds|wall_seconds)": [^,]*' "/tmp/profile.$name.json" | tr '\n' ' '
+    echo
+  }
+  export -f profile_case
+  echo "# profilers on this machine: $(command -v nsys ncu 2>/dev/null | tr '\n' ' ')$(ls -d /opt/nvidia/nsight* /usr/local/cuda/nsight* 2>/dev/null | tr '\n' ' ')"
+  part "profile WCA 1M" 40 profile_case wca lj-fluid --set n_cells=63 --set thermostat=none \
+    --set equilibration_steps=0 --set steps=500 --set sample_every=500 --set guard.every=500
+  part "profile rotating-drum short" 40 profile_case drum rotating-drum --preset short --set steps=300 \
+    --set sample_every=300 --set output.every=0 --set checkpoint_every=0
+  part "profile rayleigh-benard medium" 40 profile_case rb rayleigh-benard --preset medium \
+    --set steps=200 --set sample_every=200 --set fields.interval=0 --set output.every=0
+fi
+
 # Weak scaling of lj-fluid on the host back end, 1 to 16 ranks (one per core here: real
 # scaling, unlike 2 cores oversubscribed), 16384 atoms per rank, rounds in alternating order
 # for the time left of the 5 minutes. The runs' JSON go to $OUT/scaling_weak;
@@ -280,6 +306,8 @@ scaling_runs() {  # SECONDS_LEFT
     took=$(( $(date +%s) - t0 ))
     echo "rounds complete: $round"
   done
+  # One file comes back from the lent machine more surely than dozens.
+  tar -czf "$out.tar.gz" -C "$(dirname "$out")" "$(basename "$out")" && rm -rf "$out"
 }
 export -f scaling_runs
 if [ -z "$only" ] || [ "$only" = scaling ]; then

@@ -109,6 +109,7 @@ void read_back(const T* from, T* to, std::size_t n_values, cudaStream_t stream) 
 template <class T, class F, class Op>
 T reduce(Cuda backend, std::size_t n, T init, const F& f, Op op) {
     if (n == 0) return init;
+    const ProfiledCall profiled("reduce", functor_name<F>());
     const int items = item_count(n);
     auto in = thrust::make_transform_iterator(thrust::counting_iterator<std::size_t>(0),
                                               Apply<T, F>{f});
@@ -161,6 +162,7 @@ std::size_t first_index(Cuda backend, std::size_t n, const Pred& pred) {
 template <class T>
 T exclusive_scan(Cuda backend, const T* in, T* out, std::size_t n) {
     if (n == 0) return T{};
+    const ProfiledCall profiled("scan", functor_name<T>());
     const int items = cuda_detail::item_count(n);
     T last_in;
     // The last input is read before the scan may overwrite it (in == out).
@@ -182,6 +184,7 @@ T exclusive_scan(Cuda backend, const T* in, T* out, std::size_t n) {
 inline void sort_pairs(Cuda backend, std::uint32_t* keys, std::uint32_t* values, std::size_t n,
                        int key_bits = 32) {
     if (n < 2) return;
+    const ProfiledCall profiled("sort", functor_name<std::uint32_t>());
     const int items = cuda_detail::item_count(n);
     const std::size_t array = (n * sizeof(std::uint32_t) + 255) / 256 * 256;
     std::size_t temp = 0;

@@ -11,6 +11,7 @@
 #include <string>
 #include <type_traits>
 
+#include "emergent/device_profile.hpp"
 #include "emergent/macros.hpp"
 
 namespace emergent::exec {
@@ -43,6 +44,29 @@ void check_launch() {
     cuda_check(cudaGetLastError(), functor_name<Functor>());
 }
 
+/// With EMERGENT_PROFILE set (emergent/device_profile.hpp): the call in its scope timed alone,
+/// the device synchronised before and after it. Otherwise nothing.
+class ProfiledCall {
+public:
+    ProfiledCall(const char* what, const char* name) : what_(what), name_(profiling() ? name : nullptr) {
+        if (!name_) return;
+        cudaDeviceSynchronize();  // errors are sticky: the call's own check reports them
+        start_ = profile_clock();
+    }
+    ~ProfiledCall() {
+        if (!name_) return;
+        cudaDeviceSynchronize();
+        profile_add(what_, name_, profile_clock() - start_);
+    }
+    ProfiledCall(const ProfiledCall&) = delete;
+    ProfiledCall& operator=(const ProfiledCall&) = delete;
+
+private:
+    const char* what_;
+    const char* name_;
+    double start_ = 0;
+};
+
 template <class Functor>
 __global__ void for_each_kernel(std::size_t n, Functor f) {
     const std::size_t i = blockIdx.x * static_cast<std::size_t>(blockDim.x) + threadIdx.x;
@@ -52,6 +76,7 @@ __global__ void for_each_kernel(std::size_t n, Functor f) {
 template <class Functor>
 void for_each(Cuda backend, std::size_t n, const Functor& f) {
     if (n == 0) return;
+    const ProfiledCall profiled("loop", functor_name<Functor>());
     const unsigned blocks = static_cast<unsigned>((n + backend.block_size - 1) / backend.block_size);
     for_each_kernel<<<blocks, backend.block_size, 0, backend.stream>>>(n, f);
     check_launch<Functor>();
@@ -111,6 +136,7 @@ template <class Functor>
 void for_each_split(Cuda backend, std::size_t n, int lanes, const Functor& f) {
     if (lanes == 1) return for_each(backend, n, f);
     if (n == 0) return;
+    const ProfiledCall profiled("lanes", functor_name<Functor>());
     with_lanes(lanes, [&](auto width) {
         for_each_split_kernel<decltype(width)::value>
             <<<blocks_for(backend, n, lanes), backend.block_size, 0, backend.stream>>>(n, f);

@@ -18,6 +18,7 @@
 #include "app/memory_check.hpp"
 #include "app/run_guard.hpp"
 #include "app/run_summary.hpp"
+#include "emergent/device_profile.hpp"
 #include "app/stop_request.hpp"
 
 namespace emergent::app {
@@ -286,6 +287,8 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
             io::write_atomically(req.output_dir + "/summary.json", json);
         }
         if (!req.summary_json.empty()) io::write_atomically(req.summary_json, json);
+        // Set-up, equilibration and timed steps together (EMERGENT_PROFILE; rank 0's device).
+        if (exec::profiling()) std::fputs(exec::profile_table().c_str(), stderr);
     }
     return json;
 }

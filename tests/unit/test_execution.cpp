@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "emergent/device_profile.hpp"
 #include "emergent/execution.hpp"
 #include "support/execution_cases.hpp"
 
@@ -136,4 +137,18 @@ TEST(Execution, TargetRefusesTheDeviceWhereCompiledWithoutCuda) {
     } catch (const std::runtime_error& e) {
         EXPECT_NE(std::string(e.what()).find("compiled without CUDA"), std::string::npos) << e.what();
     }
+}
+
+// The device profile names a call by its functor, taken from the launcher's signature as GCC
+// spells it (the form the CUDA back end passes), template arguments and all.
+TEST(DeviceProfile, NamesEachCallByItsFunctorAndTalliesItsCalls) {
+    exec::profile_add("loop", "const char* emergent::exec::functor_name() [with Functor = emergent::integrate::KickDrift]", 0.5);
+    exec::profile_add("loop", "const char* emergent::exec::functor_name() [with Functor = emergent::integrate::KickDrift]", 0.25);
+    exec::profile_add("reduce", "const char* emergent::exec::functor_name() [with Functor = emergent::{anonymous}::Pair<emergent::Vec3, 2>; std::size_t = long unsigned int]", 1.0);
+    const std::string table = exec::profile_table();
+    EXPECT_NE(table.find("loop  integrate::KickDrift\n"), std::string::npos) << table;
+    EXPECT_NE(table.find("reduce  {anonymous}::Pair<Vec3, 2>\n"), std::string::npos) << table;
+    // Longest total first; the KickDrift row shows 2 calls of 375 us each.
+    EXPECT_LT(table.find("Pair<"), table.find("KickDrift")) << table;
+    EXPECT_NE(table.find(" 2     375000.00  loop  integrate::KickDrift"), std::string::npos) << table;
 }
