@@ -73,6 +73,9 @@ export PMIX_MCA_mca_base_component_path="$here/usr/lib/x86_64-linux-gnu/pmix2/li
 # hwloc's optional plugins (X11, OpenCL, PCI) are not bundled: none are loaded.
 export HWLOC_PLUGINS_PATH="$here/usr/lib/x86_64-linux-gnu/hwloc"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+# PMIx's zlib compression component does not load from the bundle (a symbol of the system's
+# PMIx build); PMIx works without it. Its load error and warning are kept out of the logs.
+export PMIX_MCA_mca_base_component_show_load_errors=0 PMIX_MCA_pcompress_base_silence_warning=1
 ENV
 {
   echo "commit $(git rev-parse --short=12 HEAD)$(git diff --quiet HEAD -- src include tests benchmarks || echo ' (with uncommitted changes)')"

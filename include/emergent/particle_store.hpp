@@ -71,8 +71,18 @@ public:
     bool has_diameters() const { return diameters_; }
 
     std::size_t n_owned() const { return n_owned_; }
-    std::size_t n_ghost() const { return position.size() - n_owned_; }
-    std::size_t size() const { return position.size(); }
+    std::size_t n_ghost() const { return size() - n_owned_; }
+    std::size_t size() const { return deferred_ ? deferred_size_ : position.size(); }
+
+    /// While the arrays' contents live elsewhere (a back end's memory: ParticleMirror),
+    /// resize_owned() and resize_ghosts() change the counts only, and end_deferred_resize()
+    /// sizes the arrays once, to the last count: growing an array constructs its new elements,
+    /// and a list build that drops and re-adds most particles (rigid bodies' spheres, ghosts)
+    /// would otherwise fill them all on the host at every build. The arrays must not be read
+    /// in between.
+    void begin_deferred_resize();
+    void end_deferred_resize();
+    bool resize_deferred() const { return deferred_; }
 
     /// Appends one owned particle (drops any ghosts first).
     void add_owned(const Vec3& x, const Vec3& v, int species_index, std::int64_t global_id,
@@ -149,6 +159,8 @@ private:
     void resize_all(std::size_t n);
 
     std::size_t n_owned_ = 0;
+    bool deferred_ = false;
+    std::size_t deferred_size_ = 0;
     bool rigid_ = false;
     bool diameters_ = false;
 };

@@ -19,6 +19,7 @@
 #include "app/run_guard.hpp"
 #include "app/run_summary.hpp"
 #include "emergent/device_profile.hpp"
+#include "emergent/gpu.hpp"
 #include "app/stop_request.hpp"
 
 namespace emergent::app {
@@ -92,10 +93,12 @@ RunSettings run_settings(const Config& cfg) {
         cfg.text("integrator") == "omelyan" ? Integrator::Omelyan : Integrator::VelocityVerlet;
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
     const std::string& backend = cfg.text("backend");
-    // auto stays on the host until the CUDA back end has passed its device check (benchmarks/
-    // gpu_check.sh on a lent GPU); cuda is chosen explicitly until then.
+    // auto: the device where this build has CUDA and the process sees one (the CUDA back end
+    // passed benchmarks/gpu_check.sh on an H200, benchmarks/RESULTS.md), else the host.
     settings.backend = backend == "cuda"       ? Backend::Cuda
                        : backend == "checking" ? Backend::Checking
+                       : backend == "host"     ? Backend::Host
+                       : gpu::device_present() ? Backend::Cuda
                                                : Backend::Host;
     const std::string& layout = cfg.text("neighbour_list");
     settings.list_layout = layout == "full"   ? ListLayout::Full

@@ -2,6 +2,8 @@
 // Structure-of-arrays particle storage.
 #include "emergent/particle_store.hpp"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cstring>
 #include <type_traits>
@@ -55,6 +57,7 @@ void ParticleStore::enable_rigid_fields() {
 
 void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
                               std::int64_t global_id, Real particle_diameter) {
+    if (deferred_) throw std::logic_error("ParticleStore::add_owned during a deferred resize");
     resize_all(n_owned_);  // drops any ghosts, so the new element starts from the fill values
     resize_all(n_owned_ + 1);
     position[n_owned_] = x;
@@ -71,10 +74,30 @@ void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
 
 void ParticleStore::resize_owned(std::size_t n) {
     n_owned_ = n;
-    resize_all(n);
+    if (deferred_)
+        deferred_size_ = n;
+    else
+        resize_all(n);
 }
 
-void ParticleStore::resize_ghosts(std::size_t n) { resize_all(n_owned_ + n); }
+void ParticleStore::resize_ghosts(std::size_t n) {
+    if (deferred_)
+        deferred_size_ = n_owned_ + n;
+    else
+        resize_all(n_owned_ + n);
+}
+
+void ParticleStore::begin_deferred_resize() {
+    if (deferred_) return;
+    deferred_size_ = position.size();
+    deferred_ = true;
+}
+
+void ParticleStore::end_deferred_resize() {
+    if (!deferred_) return;
+    deferred_ = false;
+    resize_all(deferred_size_);
+}
 
 void ParticleStore::permute_owned(const std::vector<std::uint32_t>& order, unsigned fields) {
     const std::size_t n = order.size();

@@ -56,10 +56,11 @@ Schema run_schema() {
         .choice("backend", "auto", {"auto", "host", "checking", "cuda"},
                 "where the particle data live and the per-particle loops run: host (CPU loops), "
                 "cuda (the step's loops as kernels on one CUDA device per rank, chosen by the "
-                "rank's index on its node; refused where there is none; not yet checked on a "
-                "device: benchmarks/gpu_check.sh), checking (the host back end with its data kept "
+                "rank's index on its node; refused where there is none; checked on an H200 by "
+                "benchmarks/gpu_check.sh), checking (the host back end with its data kept "
                 "apart from the host copy, which is poisoned between syncs: bitwise host's "
-                "results, for tests), auto (host until the device check has passed)")
+                "results, for tests), auto (cuda where this build has CUDA and a device is "
+                "visible, else host)")
         .choice("neighbour_list", "auto", {"auto", "half", "full"},
                 "neighbour-list layout: half (each pair once, the host's fastest), full (each pair "
                 "under both members, the device's layout; every force term must have a back-end "

@@ -162,6 +162,8 @@ void ParticleMirror::grow(Array& a, std::size_t n, std::size_t keep) {
 }
 
 void ParticleMirror::to_backend(ParticleStore& store, unsigned fields) {
+    if ((fields & backend_stale_) && store.resize_deferred())
+        throw std::logic_error("particle mirror: host values sent while the arrays' size was deferred");
     fit(store);
     store.for_each_field([&](const FieldSpan& span) {
         if (!(fields & backend_stale_ & span.field)) return;
@@ -174,6 +176,8 @@ void ParticleMirror::to_backend(ParticleStore& store, unsigned fields) {
 
 void ParticleMirror::to_host(ParticleStore& store, unsigned fields) {
     if (!(fields & host_stale_)) return;
+    if (store.resize_deferred())
+        throw std::logic_error("particle mirror: the host read particles while their arrays' size was deferred");
     if (store.size() != size_)
         throw std::logic_error("particle mirror: the store holds " + std::to_string(store.size()) +
                                " particles, the back end " + std::to_string(size_));
@@ -192,7 +196,9 @@ void ParticleMirror::written_on_backend(ParticleStore& store, unsigned fields) {
         if (!(fields & span.field)) return;
         backend_stale_ &= ~static_cast<unsigned>(span.field);
         host_stale_ |= span.field;
-        if (poison_) std::memset(span.data, poison_byte(span.field), size_ * span.element_bytes);
+        // Deferred (DeferredResize): poisoned at its end, once the arrays have their size.
+        if (poison_ && !store.resize_deferred())
+            std::memset(span.data, poison_byte(span.field), size_ * span.element_bytes);
     });
 }
 
@@ -210,11 +216,27 @@ void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_owned
             if (candidate.field == span.field) a = &candidate;
         if (!a) throw std::logic_error("particle mirror: a field has no array on the back end");
         grow(*a, n, std::min(size_, n));
-        if (poison_) std::memset(span.data, poison_byte(span.field), n * span.element_bytes);
+        // Deferred (DeferredResize): the host arrays are sized and poisoned once, at its end.
+        if (poison_ && !store.resize_deferred())
+            std::memset(span.data, poison_byte(span.field), n * span.element_bytes);
     });
     size_ = n;
     backend_stale_ &= ~present;
     host_stale_ |= present;
+}
+
+ParticleMirror::DeferredResize::DeferredResize(ParticleMirror& mirror, ParticleStore& store)
+    : mirror_(mirror), store_(store) {
+    store_.begin_deferred_resize();
+}
+
+ParticleMirror::DeferredResize::~DeferredResize() {
+    store_.end_deferred_resize();
+    if (!mirror_.poison_) return;
+    store_.for_each_field([&](const FieldSpan& span) {
+        if (mirror_.host_stale_ & span.field)
+            std::memset(span.data, poison_byte(span.field), store_.size() * span.element_bytes);
+    });
 }
 
 void ParticleMirror::written_on_host(unsigned fields) {

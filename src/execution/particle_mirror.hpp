@@ -45,6 +45,21 @@ public:
     /// every field are stale (poisoned in the checking variant). For a list build on the back
     /// end; every field but forces (recomputed after a build) must be current on the back end.
     void resize_on_backend(ParticleStore& store, std::size_t n_owned, std::size_t n_ghost);
+    /// For its lifetime, the store's host arrays are not resized by resize_on_backend (only its
+    /// counts change); at its end they take the last size once, poisoned in the checking
+    /// variant (ParticleStore::begin_deferred_resize: a build that drops and re-adds most
+    /// particles would otherwise construct them all on the host).
+    class DeferredResize {
+    public:
+        DeferredResize(ParticleMirror& mirror, ParticleStore& store);
+        ~DeferredResize();
+        DeferredResize(const DeferredResize&) = delete;
+        DeferredResize& operator=(const DeferredResize&) = delete;
+
+    private:
+        ParticleMirror& mirror_;
+        ParticleStore& store_;
+    };
     /// Calls visit(field, element_bytes, data) for each of the back end's particle arrays.
     template <class Visitor>
     void for_each_array(Visitor&& visit) const {

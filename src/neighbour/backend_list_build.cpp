@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include "decomposition/ghost_image.hpp"
@@ -33,6 +34,11 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
                              exec::BackendHalo& backend_halo, const Bodies* bodies) {
     fault_.clear();
     mirror.to_backend(store, kAllFields & ~kForce);
+    if (bodies) bodies->mirror->to_backend(*bodies->store, kAllFields & ~(kForce | kTorque));
+    // The host's arrays are sized once, at the end (or on any way out).
+    const exec::ParticleMirror::DeferredResize particles_sized(mirror, store);
+    std::optional<exec::ParticleMirror::DeferredResize> bodies_sized;
+    if (bodies) bodies_sized.emplace(*bodies->mirror, *bodies->store);
     // The first sort is by id as a 32-bit key; larger ids (never made by the scenes here, but
     // allowed) leave the build to the host, on every rank.
     double largest_id = exec::transform_max(target, store.n_owned(), 0.0,
@@ -55,7 +61,6 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     fault_ = decomp::first_message(grid.comm(), fault_);
     if (!fault_.empty()) return true;
     if (bodies) {
-        bodies->mirror->to_backend(*bodies->store, kAllFields & ~(kForce | kTorque));
         if (alone)
             come_home(target, *bodies->mirror, *bodies->store, grid);
         else
