@@ -27,7 +27,9 @@
 # loop's functor.
 #   profile     (only when asked for: --only profile) the throughput cases with
 #               EMERGENT_PROFILE=1: the device's time by loop, reduction, scan, sort and copy
-# usage: bash benchmarks/gpu_check.sh [--only tests|scenes|sanitizer|throughput|scaling|profile]
+#   ratio       (only when asked for) lj-fluid WCA at 1M atoms on the engine against the
+#               separate path it replaced, 5 alternating rounds, median ratio with min-max
+# usage: bash benchmarks/gpu_check.sh [--only tests|scenes|sanitizer|throughput|scaling|profile|ratio]
 #        [--bundle DIR]
 #   DIR defaults to gpu_bundle/, else gpu_bundle.tar.xz is unpacked (what travels).
 # The log goes to $OUT/gpu_check.log where the device tool sets OUT (copy it to
@@ -38,12 +40,12 @@ cd "$(dirname "$0")/.."
 only="" bundle=gpu_bundle
 while [ $# -gt 0 ]; do
   case $1 in
-    --only) only=${2:?--only needs tests, scenes, sanitizer, throughput, scaling or profile}; shift 2 ;;
+    --only) only=${2:?--only needs tests, scenes, sanitizer, throughput, scaling, profile or ratio}; shift 2 ;;
     --bundle) bundle=${2:?--bundle needs a directory}; shift 2 ;;
     *) echo "gpu_check.sh: unknown argument $1" >&2; exit 2 ;;
   esac
 done
-case $only in ""|tests|scenes|sanitizer|throughput|scaling|profile) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
+case $only in ""|tests|scenes|sanitizer|throughput|scaling|profile|ratio) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
 if [ ! -d "$bundle" ] && [ -f "$bundle.tar.xz" ]; then
   mkdir -p /tmp/emergent_bundle && tar -xJf "$bundle.tar.xz" -C /tmp/emergent_bundle ||
     { echo "gpu_check.sh: cannot unpack $bundle.tar.xz" >&2; exit 2; }
@@ -255,6 +257,32 @@ if [ -z "$only" ] || [ "$only" = throughput ]; then
   part "throughput rotating-drum short (set-up + 300 steps)" 25 engine_case /tmp/drum.json \
     rotating-drum --preset short --set steps=300 --set sample_every=300 --set output.every=0 \
     --set checkpoint_every=0
+fi
+
+# The engine against the separate path it replaced, WCA at 1M atoms: 5 rounds, alternating
+# which runs first, the median of the per-round ratios with min and max (only with --only ratio).
+if [ "$only" = ratio ]; then
+  ratio_rounds() {
+    local r ref eng first
+    for r in 1 2 3 4 5; do
+      for first in $( [ $((r % 2)) = 1 ] && echo "ref eng" || echo "eng ref"); do
+        if [ $first = ref ]; then
+          ref=$("$bin/emergent-gpu-bench" --cells 63 --density 0.8 --skin 0.3 --steps 500 --warmup 500 \
+                  --repeats 3 --precision double | sed -n 's/.*atom_steps_per_s=\([0-9.e+]*\).*/\1/p')
+        else
+          emergent run lj-fluid --set n_cells=63 --set thermostat=none --set equilibration_steps=100 \
+            --set steps=1000 --set sample_every=1000 --set guard.every=1000 --set progress_interval=0 \
+            --set backend=cuda --set neighbour_list=full --summary-json /tmp/ratio.json -o /tmp/ratio >/dev/null
+          eng=$(sed -n 's/.*"atom_steps_per_second": \([0-9.e+]*\).*/\1/p' /tmp/ratio.json)
+        fi
+      done
+      echo "round $r: separate path $ref, engine $eng atom-steps/s, ratio $(awk -v a="$eng" -v b="$ref" 'BEGIN { printf "%.3f", a / b }')"
+    done
+  }
+  export -f ratio_rounds
+  part "WCA 1M: engine / separate path, 5 alternating rounds" 90 bash -c \
+    'ratio_rounds | tee /tmp/ratio.log; awk "/ratio/ { print \$NF }" /tmp/ratio.log | sort -g |
+     awk "{ a[NR] = \$1 } END { printf \"median %.3f (min %.3f, max %.3f)\\n\", a[3], a[1], a[5] }"'
 fi
 
 # Where the device's time goes (only with --only profile: each call is timed alone, so the run
