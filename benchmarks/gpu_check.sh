@@ -309,12 +309,14 @@ if [ "$only" = profile ]; then
 fi
 
 # Weak scaling of lj-fluid on the host back end, 1 to 16 ranks (one per core here: real
-# scaling, unlike 2 cores oversubscribed), 16384 atoms per rank, rounds in alternating order
+# scaling, unlike 2 cores oversubscribed), 4 SCALING_CELLS^3 atoms per rank (default 16: 16384),
+# SCALING_STEPS timed steps (default 800), rounds in alternating order
 # for the time left of the 5 minutes. The runs' JSON go to $OUT/scaling_weak;
 # TABLE_ONLY=1 CORES=<cores> OUT=<that folder> ROUNDS=<rounds> benchmarks/scaling.sh weak
-# lj-fluid 1 2 4 8 16 -- --set n_cells=16 tabulates them.
+# lj-fluid 1 2 4 8 16 -- --set n_cells=<SCALING_CELLS> tabulates them.
 scaling_runs() {  # SECONDS_LEFT
   local deadline=$(( $(date +%s) + $1 )) out=${OUT:-/tmp}/scaling_weak round np cells t0 took=0
+  local base=${SCALING_CELLS:-16} steps=${SCALING_STEPS:-800}
   local ranks=(1 2 4 8 16)
   [ "$(nproc)" -ge 16 ] || ranks=(1 2)
   mkdir -p "$out"
@@ -324,9 +326,9 @@ scaling_runs() {  # SECONDS_LEFT
     local order=("${ranks[@]}")
     [ $((round % 2)) = 0 ] && order=($(printf '%s\n' "${ranks[@]}" | sort -rn))
     for np in "${order[@]}"; do
-      cells=$(awk -v n="$np" 'BEGIN { printf "%d", 16 * n ^ (1 / 3) + 0.5 }')
+      cells=$(awk -v n="$np" -v c="$base" 'BEGIN { printf "%d", c * n ^ (1 / 3) + 0.5 }')
       mpirun -q --bind-to core -np "$np" emergent run lj-fluid --set n_cells="$cells" \
-        --set backend=host --set equilibration_steps=200 --set steps=800 --set progress_interval=0 \
+        --set backend=host --set equilibration_steps=$((steps / 4)) --set steps=$steps --set progress_interval=0 \
         --summary-json "$out/np${np}_round$round.json" >/dev/null || return
       grep -hoE '"(N|grid|wall_seconds|atom_steps_per_second)": [^,]*' "$out/np${np}_round$round.json" |
         tr '\n' ' ' | sed "s/^/round $round, $np ranks: /"
@@ -335,15 +337,30 @@ scaling_runs() {  # SECONDS_LEFT
     took=$(( $(date +%s) - t0 ))
     echo "rounds complete: $round"
   done
+  # The machine's own slowdown when all cores work (shared memory bandwidth, caches, SMT), with
+  # no communication: as many independent 1-rank runs at once as the largest rank count, each
+  # on its core; scaling.sh divides the efficiency by it.
+  local n=${ranks[-1]} k
+  for round in 1 2 3; do
+    [ $(( $(date +%s) + 8 )) -lt "$deadline" ] || break
+    for ((k = 0; k < n; ++k)); do
+      taskset -c "$k" emergent run lj-fluid --set n_cells=$base --set backend=host \
+        --set equilibration_steps=$((steps / 4)) --set steps=$steps --set progress_interval=0 \
+        --summary-json "$out/concurrent${n}_round${round}_k$k.json" >/dev/null 2>&1 &
+    done
+    wait
+    echo "contention round $round: $n independent 1-rank runs at once, wall seconds" \
+      "$(grep -ho '"wall_seconds": [0-9.e+-]*' "$out"/concurrent${n}_round${round}_k*.json | cut -d' ' -f2 | sort -g | tr '\n' ' ')"
+  done
   # One file comes back from the lent machine more surely than dozens.
   tar -czf "$out.tar.gz" -C "$(dirname "$out")" "$(basename "$out")" && rm -rf "$out"
 }
 export -f scaling_runs
 if [ -z "$only" ] || [ "$only" = scaling ]; then
   left=$(( 300 - ($(date +%s) - script_start) ))
-  [ -n "$only" ] && left=120
+  [ -n "$only" ] && left=${SCALING_SECONDS:-120}
   if [ $left -ge 20 ]; then
-    part "weak scaling lj-fluid, host back end, 16384 atoms per rank" $left scaling_runs $((left - 5))
+    part "weak scaling lj-fluid, host back end, n_cells ${SCALING_CELLS:-16} per rank" $left scaling_runs $((left - 5))
   else
     echo "## weak scaling: not run ($left s left of the 5 minutes)"
   fi

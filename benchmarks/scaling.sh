@@ -99,6 +99,18 @@ for r in rows:
           + "  ".join(f"{r[p]:11.4f}" for p in parts)
           + f"  {r['msgs']:4.1f}  {r['kbytes']:7.1f}  {r['bytes_per_particle']:10.0f}  {note}")
     r["efficiency"] = eff
+# The contention control (benchmarks/gpu_check.sh): as many independent 1-rank runs at once as
+# the largest rank count; their median time per step over the 1-rank point's is the machine's
+# own slowdown with every core busy, which no decomposition can remove.
+import glob
+top = rows[-1]["ranks"]
+concurrent = [json.load(open(f)) for f in glob.glob(f"{out}/concurrent{top}_round*_k*.json")]
+if concurrent and mode == "weak":
+    step_ms = statistics.median(c["wall_seconds"] / c["steps"] * 1e3 for c in concurrent)
+    slowdown = step_ms / base["step_ms"] * base["N"] / concurrent[0]["N"]
+    print(f"# contention control: {len(concurrent)} runs of 1 rank ({concurrent[0]['N']} atoms), "
+          f"{top} at once: {step_ms:.3f} ms per step, {slowdown:.3f}x the 1-rank point's; "
+          f"{top}-rank efficiency net of it: {rows[-1]['efficiency'] * slowdown:.3f}")
 try:
     import matplotlib
     matplotlib.use("Agg")
