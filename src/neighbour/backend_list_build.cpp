@@ -424,39 +424,12 @@ void BackendListBuild::list(const exec::Target& target, exec::ParticleMirror& mi
         search.short_reach =
             exec::transform_max(target, n, 0.0, build::SpeciesOutside{search.species, n_range_species_}) == 0.0;
     }
-    // One search where the rows fit the padded buffer (counted and kept at once, then
-    // compacted), else a second that lists into the counted rows; the same list either way.
-    std::uint32_t* overflow = nullptr;
-    if (row_capacity_ > 0 && n_owned > 0) {
-        search.capacity = row_capacity_;
-        search.padded = buffer(mirror, kPadded, n_owned * std::size_t(row_capacity_));
-        search.overflow = overflow = buffer(mirror, kOverflow, 1);
-        exec::for_each(target, 1, build::ClearWord{overflow});
-    }
     exec::for_each(target, n_owned + 1, search);
     n_pairs_ = exec::exclusive_scan(target, offset, offset, n_owned + 1);
     std::uint32_t* neighbours = buffer(mirror, kNeighbours, n_pairs_);
-    const bool fitted = overflow && exec::read_one(target, overflow) == 0;
-    if (fitted) {
-        exec::for_each(target, n_owned, build::CompactPadded{search.padded, row_capacity_, offset, neighbours});
-    } else {
-        search.padded = nullptr;
-        search.offset = offset;
-        search.out = neighbours;
-        exec::for_each(target, n_owned, search);
-    }
-    // Room for twice the mean row and more (a liquid's rows vary by tens of per cent; rows near
-    // walls or in clusters more), widened by half where a row did not fit.
-    if (n_owned > 0) {
-        const std::uint32_t wanted =
-            static_cast<std::uint32_t>(2 * n_pairs_ / n_owned + 8 + 7) / 8 * 8;
-        row_capacity_ = std::max(row_capacity_, wanted);
-        if (overflow && !fitted) row_capacity_ += row_capacity_ / 2;
-        // Not at any price in memory: where rows vary so much that the buffer would outgrow
-        // six lists (and 32 entries a particle), the two searches stay.
-        if (std::size_t(row_capacity_) * n_owned > std::max<std::size_t>(6 * n_pairs_, 32 * n_owned))
-            row_capacity_ = 0;
-    }
+    search.offset = offset;
+    search.out = neighbours;
+    exec::for_each(target, n_owned, search);
     offsets_ = offset;
     neighbours_ = neighbours;
     Vec3* reference = static_cast<Vec3*>(mirror.scratch(slot_ + kReference, n_owned * sizeof(Vec3)));

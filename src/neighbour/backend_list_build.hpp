@@ -148,8 +148,7 @@ private:
     }
     enum Buffer : std::size_t { kKeys, kValues, kFlags, kGather, kCellStart, kOffsets, kNeighbours,
                                 kReference, kFaults, kLeave1, kKeep, kSend, kReceive, kIndex0, kIndex1,
-                                kConstituentFirst, kConstituentIndex, kNewOfOld, kPadded, kOverflow,
-                                kSwapIndex0 };  // then one per swap (up to 8)
+                                kConstituentFirst, kConstituentIndex, kNewOfOld, kSwapIndex0 };  // then one per swap (up to 8)
 
     std::size_t slot_;
     const double* range_table_ = nullptr;
@@ -157,9 +156,6 @@ private:
     std::string fault_;
     const std::uint32_t *offsets_ = nullptr, *neighbours_ = nullptr;
     std::size_t n_pairs_ = 0;
-    /// Entries a row may keep in the search's padded buffer (0: two searches, count then list):
-    /// set from the last build's mean row, widened where a row did not fit.
-    std::uint32_t row_capacity_ = 0;
     const Vec3* reference_ = nullptr;
     rigid::ConstituentIndex constituents_{};
     MessageCounts migration_traffic_, ghost_traffic_;

@@ -382,12 +382,6 @@ struct ListNeighbours {
     const int* species = nullptr;
     unsigned n_species = 0;
     bool short_reach = false;
-    /// Counting (offset null) with `padded`: the first `capacity` neighbours of i are also kept
-    /// at padded[i * capacity ...], so that CompactPadded can make the list without a second
-    /// search; a row with more sets *overflow (then the second search is needed).
-    std::uint32_t* padded = nullptr;
-    std::uint32_t capacity = 0;
-    std::uint32_t* overflow = nullptr;
     EMERGENT_HD void operator()(std::size_t i) const {
         if (i == n_owned) {
             if (!offset) out[i] = 0;
@@ -406,40 +400,15 @@ struct ListNeighbours {
                 if (si < n_species && sj < n_species) limit = Real(range_table[si * n_species + sj]);
             }
             if (dot(r, r) < limit) {
-                if (offset)
-                    out[offset[i] + count] = j;
-                else if (padded && count < capacity)
-                    padded[i * capacity + count] = j;
+                if (offset) out[offset[i] + count] = j;
                 ++count;
             }
         };
         const bool short_search = short_reach && si < n_species;
         cells.visit_within(xi, short_search ? cells.reach_of(range_table[n_species * n_species + si]) : cells.reach,
                            start, member, consider);
-        if (!offset) {
-            out[i] = count;
-            if (padded && count > capacity) *overflow = 1;  // every writer writes 1: no race
-        }
+        if (!offset) out[i] = count;
     }
-};
-
-/// The list from the rows ListNeighbours kept in its padded buffer (none overflowed): row i's
-/// entries, in the search's order, at out[offset[i] ...].
-struct CompactPadded {
-    const std::uint32_t* padded;
-    std::uint32_t capacity;
-    const std::uint32_t* offset;
-    std::uint32_t* out;
-    EMERGENT_HD void operator()(std::size_t i) const {
-        const std::uint32_t first = offset[i], n = offset[i + 1] - first;
-        for (std::uint32_t k = 0; k < n; ++k) out[first + k] = padded[i * capacity + k];
-    }
-};
-
-/// Sets one word (a flag on the back end) to 0.
-struct ClearWord {
-    std::uint32_t* word;
-    EMERGENT_HD void operator()(std::size_t) const { *word = 0; }
 };
 
 }  // namespace emergent::build

@@ -4,7 +4,6 @@
 // end moves nothing.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <map>
@@ -108,10 +107,10 @@ TEST(BackendTraffic, StepWithoutSamplingOnTheCheckingBackend) {
     EXPECT_EQ(t.plain_scalars, 2 * t.plain_steps);
     // The list is built where the particles live (BackendListBuild): no array moves, and a
     // fixed number of counts come back besides the step's two: the largest id (the sort's
-    // key width), the first migration fault, one count per halo swap (6 in a periodic box),
-    // the list's length and whether every row fitted the one-search buffer.
+    // key width), the first migration fault, one count per halo swap (6 in a periodic box)
+    // and the list's length.
     EXPECT_EQ(t.rebuild_arrays, 0u);
-    EXPECT_EQ(t.rebuild_scalars_fewest, 2u + 1u + 1u + 6u + 1u + 1u);
+    EXPECT_EQ(t.rebuild_scalars_fewest, 2u + 1u + 1u + 6u + 1u);
     EXPECT_EQ(t.rebuild_scalars_most, t.rebuild_scalars_fewest);
 }
 
@@ -253,57 +252,4 @@ TEST(BackendListBuild, NamesAParticleThatCannotComeHomeAsTheHostsMigrationDoes) 
     const exec::Target checking{false, true, nullptr};
     ASSERT_TRUE(list_build.build(checking, mirror, s, grid, cells, 2.0, 2.0, halo, backend_halo));
     EXPECT_EQ(list_build.fault(), host_says);
-}
-
-// The list from one search into the padded buffer (rows that fit) and from the second search
-// (after a row did not fit) is the pairs within range, each row in search order: checked
-// against all pairs by minimum image, for a build that fits, one that overflows (the particles
-// squeezed into an eighth of the box after the buffer was sized) and one after it.
-TEST(BackendListBuild, OneSearchAndTwoSearchesListTheSamePairs) {
-    Box box;
-    box.hi = {10, 10, 10};
-    decomp::RankGrid grid(MPI_COMM_SELF, box);
-    ParticleStore s;
-    std::uint64_t state = 12345;
-    auto uniform = [&] {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        return double(state >> 11) / 9007199254740992.0;
-    };
-    for (int k = 0; k < 400; ++k) s.add_owned({10 * uniform(), 10 * uniform(), 10 * uniform()}, {0, 0, 0}, 0, k);
-    const double range = 1.5;
-    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
-    CellList cells;
-    cells.setup(grid.lo(), grid.hi(), range, range);
-    decomp::HaloExchange halo;
-    exec::BackendHalo backend_halo;
-    BackendListBuild list_build;
-    const exec::Target checking{false, true, nullptr};
-    auto check = [&](const char* which) {
-        SCOPED_TRACE(which);
-        ASSERT_TRUE(list_build.build(checking, mirror, s, grid, cells, range, range, halo, backend_halo));
-        const std::size_t n = s.n_owned();
-        const Vec3* x = mirror.array<Vec3>(kPosition);
-        const std::int64_t* id = mirror.array<std::int64_t>(kId);
-        const std::uint32_t *offset = list_build.offsets(), *nb = list_build.neighbours();
-        ASSERT_EQ(offset[n], list_build.n_pairs());
-        for (std::size_t i = 0; i < n; ++i) {
-            std::vector<std::int64_t> listed, all;
-            for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) listed.push_back(id[nb[k]]);
-            for (std::size_t j = 0; j < n; ++j) {
-                Vec3 r = x[i] - x[j];
-                for (int d = 0; d < 3; ++d) r[d] -= 10 * std::round(r[d] / 10);
-                if (j != i && dot(r, r) < range * range) all.push_back(id[j]);
-            }
-            std::sort(listed.begin(), listed.end());
-            std::sort(all.begin(), all.end());
-            ASSERT_EQ(listed, all) << "row of particle id " << id[i];
-        }
-    };
-    check("two searches (no buffer yet)");
-    check("one search");
-    mirror.to_host(s, kAllFields & ~kForce);
-    for (std::size_t i = 0; i < s.n_owned(); ++i) s.position[i] = 0.5 * s.position[i];  // 8x denser
-    mirror.written_on_host(kPosition);
-    check("rows beyond the buffer: the second search");
-    check("one search in the widened buffer");
 }
