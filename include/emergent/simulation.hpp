@@ -80,8 +80,12 @@ struct RunSettings {
     LoadBalance balance = LoadBalance::None;
     long long balance_every = 0;  ///< steps between rebalances with LoadBalance::Cost; 0: start only
     /// Refresh ghosts while computing the pair forces that need none (Simulation::halo_overlap()
-    /// says where it applies); the forces are bit for bit those without.
-    bool overlap_halo = true;
+    /// says where it applies). It orders the owned particles interior first, so its results
+    /// are round-off apart from those without (the same bits as without it but in that order).
+    bool overlap_halo = false;
+    /// Order the owned particles interior first without the overlap (halo_overlap=ordered):
+    /// the overlap's order with a blocking refresh, bit for bit the overlapped run.
+    bool interior_order = false;
 };
 
 /// What load balancing did so far (Simulation::load_balance()), the same on every rank.

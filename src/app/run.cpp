@@ -107,6 +107,7 @@ RunSettings run_settings(const Config& cfg) {
     settings.balance = cfg.text("balance") == "cost" ? LoadBalance::Cost : LoadBalance::None;
     settings.balance_every = cfg.integer("balance.every");
     settings.overlap_halo = cfg.text("halo_overlap") == "on";
+    settings.interior_order = cfg.text("halo_overlap") == "ordered";
     return settings;
 }
 
