@@ -81,9 +81,9 @@ Schema run_schema() {
         .choice("halo_overlap", "off", {"on", "off", "ordered"},
                 "on: the ghosts' refresh is in flight while the pair forces that need no ghost are "
                 "computed (host half list, several ranks, no bodies or wedge), with the owned "
-                "particles ordered interior first, which cost ~10 % on 2 ranks of one node where "
-                "the refresh is quick (benchmarks/RESULTS.md): for slower networks; ordered: that "
-                "order with a blocking refresh (bit for bit on); off: plain cell order")
+                "particles ordered interior first; on 2 ranks of one node it gained nothing "
+                "(benchmarks/RESULTS.md): for slower networks; ordered: that order with a "
+                "blocking refresh (bit for bit on); off: plain cell order")
         .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
         .integer("checkpoint_every", 0, 0, 1e12, "steps",
                  "steps between checkpoints DIR/checkpoint.h5 (0: none; needs -o DIR)")

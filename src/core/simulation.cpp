@@ -274,9 +274,10 @@ struct Simulation::Engine {
         full_list = layout == ListLayout::Full ||
                     (layout == ListLayout::Auto && settings.backend != Backend::Host && host_only.empty());
         // Wedge images and bodies' spheres may lie inside a domain as ghosts: no particle is
-        // sure to be free of them, so nothing is ordered. Only for the overlap: the order costs
-        // the force loop and the list build their memory locality (10 % on 2 ranks,
-        // benchmarks/RESULTS.md), so runs without it keep the plain cell order.
+        // sure to be free of them, so nothing is ordered. Only for the overlap (or to check it):
+        // the order takes some memory locality from the force loop and the list build, and on
+        // one node the overlap gained nothing (benchmarks/RESULTS.md), so runs without it keep
+        // the plain cell order.
         interior_first = !mirror && !full_list && !bodies() && !box.wedge.active() && !forces.empty() &&
                          forces.front()->cutoff() > 0 && forces.front()->honours_range() && grid->size() > 1 &&
                          (settings.overlap_halo || settings.interior_order);
