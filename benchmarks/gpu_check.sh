@@ -34,7 +34,8 @@
 #   DIR defaults to gpu_bundle/, else gpu_bundle.tar.xz is unpacked (what travels).
 # The log goes to $OUT/gpu_check.log where the device tool sets OUT (copy it to
 # benchmarks/logs/), else to benchmarks/logs/gpu_check_<date>.log. Each part has its own time
-# limit; the exit status is that of the first part that failed (124: it ran out of time).
+# limit; the exit status is that of the first part that failed (124: it ran out of time), 2 for
+# a bad argument or setting (one line naming it).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 only="" bundle=gpu_bundle
@@ -46,6 +47,10 @@ while [ $# -gt 0 ]; do
   esac
 done
 case $only in ""|tests|scenes|sanitizer|throughput|scaling|profile|ratio) ;; *) echo "gpu_check.sh: no part '$only'" >&2; exit 2 ;; esac
+for v in SCALING_CELLS SCALING_STEPS SCALING_SECONDS; do
+  [[ -z "${!v:-}" || "${!v}" =~ ^[1-9][0-9]*$ ]] ||
+    { echo "gpu_check.sh: $v=${!v} is not a positive whole number" >&2; exit 2; }
+done
 if [ ! -d "$bundle" ] && [ -f "$bundle.tar.xz" ]; then
   mkdir -p /tmp/emergent_bundle && tar -xJf "$bundle.tar.xz" -C /tmp/emergent_bundle ||
     { echo "gpu_check.sh: cannot unpack $bundle.tar.xz" >&2; exit 2; }
@@ -226,86 +231,81 @@ if [ -z "$only" ] || [ "$only" = sanitizer ]; then
   fi
 fi
 
+# The throughput cases, shared by the throughput, ratio and profile parts: lj-fluid WCA at 1M
+# atoms (and the separate path's benchmark of the same physics), the flow scenes' paper-scale
+# presets for a few hundred steps.
+reference_args="--cells 63 --density 0.8 --skin 0.3 --steps 500 --warmup 500 --repeats 3 --precision double"
+wca=(lj-fluid --set n_cells=63 --set thermostat=none --set equilibration_steps=100 --set steps=500
+     --set sample_every=500 --set guard.every=500)
+taylor=(taylor-couette --preset paper --set steps=300 --set sample_every=300 --set fields.interval=0
+        --set output.every=0)
+layer=(rayleigh-benard --preset medium --set steps=200 --set sample_every=200 --set fields.interval=0
+       --set output.every=0)
+drum=(rotating-drum --preset short --set steps=300 --set sample_every=300 --set output.every=0
+      --set checkpoint_every=0)
+# emergent run on cuda, its rate, memory and time split from the summary (and on stderr the
+# device profile where EMERGENT_PROFILE is set).
+engine_case() {  # JSON SCENE_ARGS...
+  local json=$1
+  shift
+  emergent run "$@" --set progress_interval=0 --set backend=cuda --set neighbour_list=full \
+    --summary-json "$json" -o "/tmp/throughput.$(basename "$json" .json)" >/dev/null || return
+  grep -E '"(N|steps|wall_seconds|atom_steps_per_second|device_bytes_per_particle|bytes_per_particle|neighbour_rebuilds|seconds_(force|neighbour|integrate|communicate))"' "$json" | tr -d ' \n'
+  echo
+}
+export -f engine_case
+export reference_args
+
 if [ -z "$only" ] || [ "$only" = throughput ]; then
-  # emergent run on cuda, its rate, memory and time split from the summary.
-  engine_case() {  # JSON SCENE_ARGS...
-    local json=$1
-    shift
-    emergent run "$@" --set progress_interval=0 --set backend=cuda --set neighbour_list=full \
-      --summary-json "$json" -o "/tmp/throughput.$(basename "$json" .json)" >/dev/null || return
-    grep -E '"(N|wall_seconds|atom_steps_per_second|device_bytes_per_particle|bytes_per_particle|neighbour_rebuilds|seconds_(force|neighbour|integrate|communicate))"' "$json" | tr -d ' \n'
-    echo
-  }
-  export -f engine_case
-  # One round each within the 5 minutes (the ratio claim needs alternating rounds: a later
-  # check with more device time).
+  # One round each within the 5 minutes (the ratio needs alternating rounds: --only ratio).
   if [ -x "$bin/emergent-gpu-bench" ]; then
-    part "throughput WCA 1M double, the separate path the engine replaced" 20 "$bin/emergent-gpu-bench" \
-      --cells 63 --density 0.8 --skin 0.3 --steps 500 --warmup 500 --repeats 3 --precision double
+    # shellcheck disable=SC2086
+    part "throughput WCA 1M double, the separate path the engine replaced" 20 "$bin/emergent-gpu-bench" $reference_args
   else
     echo "## throughput of the separate path: not in this bundle (REFERENCE=1 benchmarks/gpu_bundle.sh)"
   fi
-  part "throughput WCA 1M double, Simulation backend=cuda" 25 engine_case /tmp/wca.json lj-fluid \
-    --set n_cells=63 --set thermostat=none --set equilibration_steps=100 --set steps=500 \
-    --set sample_every=500 --set guard.every=500
-  part "throughput taylor-couette paper (set-up + 300 steps)" 25 engine_case /tmp/tc.json \
-    taylor-couette --preset paper --set steps=300 --set sample_every=300 --set fields.interval=0 \
-    --set output.every=0
-  part "throughput rayleigh-benard medium (set-up + 200 steps)" 30 engine_case /tmp/rb.json \
-    rayleigh-benard --preset medium --set steps=200 --set sample_every=200 --set fields.interval=0 \
-    --set output.every=0
-  part "throughput rotating-drum short (set-up + 300 steps)" 25 engine_case /tmp/drum.json \
-    rotating-drum --preset short --set steps=300 --set sample_every=300 --set output.every=0 \
-    --set checkpoint_every=0
+  part "throughput WCA 1M double, Simulation backend=cuda" 25 engine_case /tmp/wca.json "${wca[@]}"
+  part "throughput taylor-couette paper (set-up + 300 steps)" 25 engine_case /tmp/tc.json "${taylor[@]}"
+  part "throughput rayleigh-benard medium (set-up + 200 steps)" 30 engine_case /tmp/rb.json "${layer[@]}"
+  part "throughput rotating-drum short (set-up + 300 steps)" 25 engine_case /tmp/drum.json "${drum[@]}"
 fi
 
 # The engine against the separate path it replaced, WCA at 1M atoms: 5 rounds, alternating
 # which runs first, the median of the per-round ratios with min and max (only with --only ratio).
 if [ "$only" = ratio ]; then
-  ratio_rounds() {
-    local r ref eng first
+  ratio_rounds() {  # ENGINE_SCENE_ARGS...
+    local r ref eng first ratios=()
     for r in 1 2 3 4 5; do
       for first in $( [ $((r % 2)) = 1 ] && echo "ref eng" || echo "eng ref"); do
         if [ $first = ref ]; then
-          ref=$("$bin/emergent-gpu-bench" --cells 63 --density 0.8 --skin 0.3 --steps 500 --warmup 500 \
-                  --repeats 3 --precision double | sed -n 's/.*atom_steps_per_s=\([0-9.e+]*\).*/\1/p')
+          # shellcheck disable=SC2086
+          ref=$("$bin/emergent-gpu-bench" $reference_args | sed -n 's/.*atom_steps_per_s=\([0-9.e+]*\).*/\1/p')
         else
-          emergent run lj-fluid --set n_cells=63 --set thermostat=none --set equilibration_steps=100 \
-            --set steps=1000 --set sample_every=1000 --set guard.every=1000 --set progress_interval=0 \
-            --set backend=cuda --set neighbour_list=full --summary-json /tmp/ratio.json -o /tmp/ratio >/dev/null
+          engine_case /tmp/ratio.json "$@" >/dev/null || return
           eng=$(sed -n 's/.*"atom_steps_per_second": \([0-9.e+]*\).*/\1/p' /tmp/ratio.json)
         fi
       done
-      echo "round $r: separate path $ref, engine $eng atom-steps/s, ratio $(awk -v a="$eng" -v b="$ref" 'BEGIN { printf "%.3f", a / b }')"
+      ratios+=("$(awk -v a="$eng" -v b="$ref" 'BEGIN { printf "%.3f", a / b }')")
+      echo "round $r: separate path $ref, engine $eng atom-steps/s, ratio ${ratios[-1]}"
     done
+    printf '%s\n' "${ratios[@]}" | sort -g |
+      awk '{ a[NR] = $1 } END { printf "median %.3f (min %.3f, max %.3f)\n", a[3], a[1], a[5] }'
   }
   export -f ratio_rounds
-  part "WCA 1M: engine / separate path, 5 alternating rounds" 90 bash -c \
-    'ratio_rounds | tee /tmp/ratio.log; awk "/ratio/ { print \$NF }" /tmp/ratio.log | sort -g |
-     awk "{ a[NR] = \$1 } END { printf \"median %.3f (min %.3f, max %.3f)\\n\", a[3], a[1], a[5] }"'
+  part "WCA 1M: engine / separate path, 5 alternating rounds" 90 ratio_rounds "${wca[@]}" \
+    --set steps=1000 --set sample_every=1000 --set guard.every=1000
 fi
 
 # Where the device's time goes (only with --only profile: each call is timed alone, so the run
 # is slower): the throughput cases with EMERGENT_PROFILE=1, the table of loops, reductions,
 # scans, sorts and copies by functor, each beside the case's unprofiled rate above.
 if [ "$only" = profile ]; then
-  profile_case() {  # NAME SCENE_ARGS...
-    local name=$1
-    shift
-    EMERGENT_PROFILE=1 emergent run "$@" --set progress_interval=0 --set backend=cuda \
-      --set neighbour_list=full --summary-json "/tmp/profile.$name.json" -o "/tmp/profile.$name" \
-      2>&1 >/dev/null | head -n 40
-    grep -hoE '"(N|steps|equilibration_steps|neighbour_rebuilds|wall_seconds)": [^,]*' "/tmp/profile.$name.json" | tr '\n' ' '
-    echo
-  }
-  export -f profile_case
   echo "# profilers on this machine: $(command -v nsys ncu 2>/dev/null | tr '\n' ' ')$(ls -d /opt/nvidia/nsight* /usr/local/cuda/nsight* 2>/dev/null | tr '\n' ' ')"
-  part "profile WCA 1M" 40 profile_case wca lj-fluid --set n_cells=63 --set thermostat=none \
-    --set equilibration_steps=0 --set steps=500 --set sample_every=500 --set guard.every=500
-  part "profile rotating-drum short" 40 profile_case drum rotating-drum --preset short --set steps=300 \
-    --set sample_every=300 --set output.every=0 --set checkpoint_every=0
-  part "profile rayleigh-benard medium" 40 profile_case rb rayleigh-benard --preset medium \
-    --set steps=200 --set sample_every=200 --set fields.interval=0 --set output.every=0
+  export EMERGENT_PROFILE=1
+  part "profile WCA 1M" 40 engine_case /tmp/profile.wca.json "${wca[@]}" --set equilibration_steps=0
+  part "profile rotating-drum short" 40 engine_case /tmp/profile.drum.json "${drum[@]}"
+  part "profile rayleigh-benard medium" 40 engine_case /tmp/profile.rb.json "${layer[@]}"
+  unset EMERGENT_PROFILE
 fi
 
 # Weak scaling of lj-fluid on the host back end, 1 to 16 ranks (one per core here: real

@@ -14,11 +14,12 @@ namespace emergent::exec {
 bool profiling();
 /// Seconds on a monotonic clock.
 double profile_clock();
-/// Adds one call of `what` (a kind: loop, reduce, scan, sort, copy) of the functor or call
-/// `name` (a compiler's signature; the functor's type is taken from it) lasting `seconds`.
+/// Adds one call of `what` (a kind: loop, reduce, scan, sort, copy) lasting `seconds`, named
+/// `name`: a compiler's signature (functor_name; the functor's type is taken from it) or a
+/// plain name.
 void profile_add(const char* what, const char* name, double seconds);
-/// The tallies, longest total first, with each one's share of `wall_seconds` (0: of their sum);
-/// empty when nothing was profiled.
-std::string profile_table(double wall_seconds = 0);
+/// The tallies, longest total first, with each one's share of their sum; empty when nothing
+/// was profiled.
+std::string profile_table();
 
 }  // namespace emergent::exec

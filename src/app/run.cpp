@@ -10,7 +10,9 @@
 #include <sstream>
 
 #include "decomposition/reductions.hpp"
+#include "emergent/device_profile.hpp"
 #include "emergent/error.hpp"
+#include "emergent/gpu.hpp"
 #include "emergent/simulation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
@@ -18,8 +20,6 @@
 #include "app/memory_check.hpp"
 #include "app/run_guard.hpp"
 #include "app/run_summary.hpp"
-#include "emergent/device_profile.hpp"
-#include "emergent/gpu.hpp"
 #include "app/stop_request.hpp"
 
 namespace emergent::app {

@@ -22,10 +22,11 @@ std::map<std::string, Tally>& tallies() {
     return t;
 }
 
-/// "... [with Functor = emergent::integrate::KickDrift]" -> "integrate::KickDrift".
+/// "... [with Functor = emergent::integrate::KickDrift]" -> "integrate::KickDrift"; a name
+/// that is no signature (a copy's) stays as it is.
 std::string functor_of(const char* signature) {
     std::string s(signature);
-    const std::size_t with = s.find(" = ");
+    const std::size_t with = s.find("[with ") != std::string::npos ? s.find(" = ") : std::string::npos;
     if (with != std::string::npos) {
         s = s.substr(with + 3);
         int depth = 0;
@@ -63,23 +64,23 @@ void profile_add(const char* what, const char* name, double seconds) {
     t.seconds += seconds;
 }
 
-std::string profile_table(double wall_seconds) {
+std::string profile_table() {
     if (tallies().empty()) return {};
     std::vector<std::pair<std::string, Tally>> rows(tallies().begin(), tallies().end());
     std::sort(rows.begin(), rows.end(),
               [](const auto& a, const auto& b) { return a.second.seconds > b.second.seconds; });
     double sum = 0;
     for (const auto& r : rows) sum += r.second.seconds;
-    const double whole = wall_seconds > 0 ? wall_seconds : sum;
     std::string out;
     char line[256];
-    std::snprintf(line, sizeof line, "# device profile (EMERGENT_PROFILE): each call alone; %.4f s in calls%s\n",
-                  sum, wall_seconds > 0 ? ", share of the run's wall time" : ", share of their sum");
+    std::snprintf(line, sizeof line,
+                  "# device profile (EMERGENT_PROFILE): each call alone; %.4f s in calls, share of their sum\n",
+                  sum);
     out += line;
     out += "#   total_s    share    calls   us_per_call  what  functor\n";
     for (const auto& [name, t] : rows) {
         std::snprintf(line, sizeof line, "%10.4f  %6.2f%%  %7lld  %12.2f  ", t.seconds,
-                      100 * t.seconds / whole, t.calls, 1e6 * t.seconds / double(t.calls));
+                      100 * t.seconds / sum, t.calls, 1e6 * t.seconds / double(t.calls));
         out += line + name + "\n";
     }
     return out;

@@ -196,10 +196,8 @@ void ParticleMirror::written_on_backend(ParticleStore& store, unsigned fields) {
         if (!(fields & span.field)) return;
         backend_stale_ &= ~static_cast<unsigned>(span.field);
         host_stale_ |= span.field;
-        // Deferred (DeferredResize): poisoned at its end, once the arrays have their size.
-        if (poison_ && !store.resize_deferred())
-            std::memset(span.data, poison_byte(span.field), size_ * span.element_bytes);
     });
+    poison_fields(store, fields, size_);
 }
 
 void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_owned, std::size_t n_ghost) {
@@ -216,10 +214,8 @@ void ParticleMirror::resize_on_backend(ParticleStore& store, std::size_t n_owned
             if (candidate.field == span.field) a = &candidate;
         if (!a) throw std::logic_error("particle mirror: a field has no array on the back end");
         grow(*a, n, std::min(size_, n));
-        // Deferred (DeferredResize): the host arrays are sized and poisoned once, at its end.
-        if (poison_ && !store.resize_deferred())
-            std::memset(span.data, poison_byte(span.field), n * span.element_bytes);
     });
+    poison_fields(store, present, n);
     size_ = n;
     backend_stale_ &= ~present;
     host_stale_ |= present;
@@ -232,10 +228,14 @@ ParticleMirror::DeferredResize::DeferredResize(ParticleMirror& mirror, ParticleS
 
 ParticleMirror::DeferredResize::~DeferredResize() {
     store_.end_deferred_resize();
-    if (!mirror_.poison_) return;
-    store_.for_each_field([&](const FieldSpan& span) {
-        if (mirror_.host_stale_ & span.field)
-            std::memset(span.data, poison_byte(span.field), store_.size() * span.element_bytes);
+    mirror_.poison_fields(store_, mirror_.host_stale_, store_.size());
+}
+
+void ParticleMirror::poison_fields(ParticleStore& store, unsigned fields, std::size_t n) {
+    // Deferred (DeferredResize): poisoned at its end, once the arrays have their size.
+    if (!poison_ || store.resize_deferred()) return;
+    store.for_each_field([&](const FieldSpan& span) {
+        if (fields & span.field) std::memset(span.data, poison_byte(span.field), n * span.element_bytes);
     });
 }
 

@@ -99,6 +99,8 @@ public:
     const ArrayMemory& memory() const { return *memory_; }
 
 private:
+    /// The checking variant: the first n elements of the host's `fields` set to poison.
+    void poison_fields(ParticleStore& store, unsigned fields, std::size_t n);
     struct Array {
         FieldMask field;
         std::size_t element_bytes = 0, capacity = 0;

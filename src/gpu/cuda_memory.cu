@@ -27,15 +27,15 @@ public:
         if (p) cudaFreeHost(p);
     }
     void to_backend(void* to, const void* from, std::size_t bytes) override {
-        const ProfiledCall profiled("copy", "= to the device]");
+        const ProfiledCall profiled("copy", "to the device");
         EMERGENT_CUDA_CHECK(cudaMemcpy(to, from, bytes, cudaMemcpyHostToDevice));
     }
     void to_host(void* to, const void* from, std::size_t bytes) override {
-        const ProfiledCall profiled("copy", "= to the host]");
+        const ProfiledCall profiled("copy", "to the host");
         EMERGENT_CUDA_CHECK(cudaMemcpy(to, from, bytes, cudaMemcpyDeviceToHost));
     }
     void within(void* to, const void* from, std::size_t bytes) override {
-        const ProfiledCall profiled("copy", "= within the device]");
+        const ProfiledCall profiled("copy", "within the device");
         EMERGENT_CUDA_CHECK(cudaMemcpy(to, from, bytes, cudaMemcpyDeviceToDevice));
     }
     const char* name() const override { return "CUDA device"; }

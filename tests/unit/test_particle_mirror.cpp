@@ -146,6 +146,37 @@ TEST(ParticleMirror, ArraysFollowTheStoreSize) {
     EXPECT_NE(mirror.host_only() & kForce, 0u) << "not sent at the new size";
 }
 
+// A build on the back end drops and re-adds particles: while the resize is deferred only the
+// store's counts follow, the host arrays take the last size once at the end (poisoned, their
+// values being on the back end), and reading or sending host values in between is refused.
+TEST(ParticleMirror, DeferredResizeSizesTheHostArraysOnceAtTheEnd) {
+    ParticleStore store = random_store(64, 5, false);
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    mirror.to_backend(store, kAllFields);
+    {
+        const exec::ParticleMirror::DeferredResize deferred(mirror, store);
+        mirror.resize_on_backend(store, 10, 0);
+        EXPECT_EQ(store.size(), 10u);
+        EXPECT_EQ(store.position.size(), 64u) << "the host array is not resized yet";
+        mirror.resize_on_backend(store, 70, 5);
+        EXPECT_EQ(store.n_owned(), 70u);
+        EXPECT_EQ(store.n_ghost(), 5u);
+        EXPECT_EQ(mirror.size(), 75u);
+        EXPECT_THROW(mirror.to_host(store, kPosition), std::logic_error);
+        EXPECT_THROW(store.add_owned({0, 0, 0}, {0, 0, 0}, 0, 1), std::logic_error);
+        mirror.written_on_host(kVelocity);
+        EXPECT_THROW(mirror.to_backend(store, kVelocity), std::logic_error);
+        mirror.written_on_backend(store, kVelocity);
+    }
+    EXPECT_FALSE(store.resize_deferred());
+    EXPECT_EQ(store.position.size(), 75u);
+    EXPECT_EQ(store.velocity.size(), 75u);
+    EXPECT_TRUE(std::isnan(store.position[3].x)) << "poisoned: the values are on the back end";
+    mirror.array<Vec3>(kPosition)[72].z = 2.5;
+    mirror.to_host(store, kPosition);
+    EXPECT_EQ(store.position[72].z, 2.5);
+}
+
 TEST(ParticleMirror, CudaMemoryRefusedClearlyWithoutDevice) {
     if (gpu::device_present()) GTEST_SKIP() << "a CUDA device is present";
     try {
