@@ -36,6 +36,19 @@ struct Then {
     }
 };
 
+/// A per-particle stage, then a measure of the particle it leaves (returned): the stage and a
+/// reduction over its result in one pass (transform_sum, transform_max), e.g. a drift and the
+/// displacement since the list was built. Only for a stage that touches particle i's data alone.
+template <class Stage, class Measure>
+struct ThenMeasure {
+    Stage stage;
+    Measure measure;
+    EMERGENT_HD auto operator()(std::size_t i) const {
+        stage(i);
+        return measure(i);
+    }
+};
+
 /// a[i] as a double: sums an array through transform_sum.
 template <class T>
 struct ElementOf {

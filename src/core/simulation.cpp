@@ -70,6 +70,13 @@ struct Simulation::Engine {
     unsigned particle_fields = kPosition;  ///< what the force terms read of owned particles
     long long n_global = 0, step = 0, rebuilds = 0;
     bool moved_since_build = true;  ///< a drift since the last list build
+    /// The largest squared displacement since the last build, taken in the last drift's pass
+    /// (kick_drift), for the rebuild test that follows it.
+    double drift_moved_sq = 0;
+    bool drift_moved_known = false;
+    /// This rank's free kinetic energy, summed in the last kick's pass for the thermostat.
+    double kick_kinetic = 0;
+    bool kick_kinetic_known = false;
     bool balance_due = false;       ///< the planes move at this step's next drift
     /// Ghost refresh overlapped with the pair forces (Simulation::halo_overlap()). Where the run
     /// allows it, the owned particles are ordered with the n_interior whose list rows need no
@@ -115,8 +122,9 @@ struct Simulation::Engine {
     /// The constituents' species and diameters by frame position, on the back end.
     const int* frame_species_on_backend = nullptr;
     const double* frame_diameters_on_backend = nullptr;
-    enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack, kFieldKeys, kFieldMembers,
-                                 kFieldStart, kFieldSums };
+    // kHaloPack and the two after it: BackendHalo::gather's.
+    enum Scratch : std::size_t { kEnergy, kVirial, kOverlap, kHaloPack, kFieldKeys = kHaloPack + 3,
+                                 kFieldMembers, kFieldStart, kFieldSums };
 
     // Each part of the step says what it reads and writes where it runs: on the back end
     // (functors through the execution layer, on the mirror's arrays) or as host code on the
@@ -338,6 +346,14 @@ struct Simulation::Engine {
         if (!message.empty()) throw InstabilityError(message);
     }
 
+    /// Where the rebuild test's origin (the owned positions at the last build) lies in the
+    /// memory the loops run on; null where it does not match the owned particles.
+    const Vec3* check_origin() const {
+        if (mirror) return reference_on_backend;
+        const std::vector<Vec3>& x0 = list.reference_positions();
+        return x0.size() == store.n_owned() ? x0.data() : nullptr;
+    }
+
     /// Owned positions at the last list build (the displacement check's origin), on the host.
     const std::vector<Vec3>& reference_positions() const {
         if (!built_on_backend) return list.reference_positions();
@@ -354,6 +370,7 @@ struct Simulation::Engine {
     /// restore, and where the back end declines (ids beyond its 32-bit sort keys).
     void rebuild(bool on_backend = false) {
         PhaseTimer timer(times.neighbour);
+        drift_moved_known = false;
         if (on_backend && mirror && full_list) {
             if (!boundaries.empty()) agree_on_boundary_faults();
             BackendListBuild::Bodies body_tables;
@@ -567,11 +584,19 @@ struct Simulation::Engine {
         PhaseTimer timer(times.integrate);
         moved_since_build = true;
         backend_reads(kPosition | kVelocity | kForce | kSpecies);
-        exec::for_each(target, store.n_owned(),
-                       integrate::KickDrift{data(kPosition, store.position),
-                                            data(kVelocity, store.velocity), data(kForce, store.force),
-                                            data(kSpecies, store.species), inverse_masses(),
-                                            kick, drift});
+        const integrate::KickDrift stage{data(kPosition, store.position), data(kVelocity, store.velocity),
+                                         data(kForce, store.force), data(kSpecies, store.species),
+                                         inverse_masses(), kick, drift};
+        // Where the drift is the last move before the rebuild test, the test is taken in the
+        // same pass: one read of the positions fewer, and on a device one launch fewer.
+        if (const Vec3* x0 = boundaries.empty() && !bodies() ? check_origin() : nullptr) {
+            drift_moved_sq = exec::transform_max(
+                target, store.n_owned(), 0.0,
+                exec::ThenMeasure<integrate::KickDrift, SquaredDisplacement>{stage, {stage.x, x0}});
+            drift_moved_known = true;
+        } else {
+            exec::for_each(target, store.n_owned(), stage);
+        }
         backend_wrote(kPosition | kVelocity);
         // Spheres of bodies were moved as free particles above; the bodies now place them.
         if (bodies()) {
@@ -592,9 +617,17 @@ struct Simulation::Engine {
     void kick(double kick) {
         PhaseTimer timer(times.integrate);
         backend_reads(kVelocity | kForce | kSpecies);
-        exec::for_each(target, store.n_owned(),
-                       integrate::Kick{data(kVelocity, store.velocity), data(kForce, store.force),
-                                       data(kSpecies, store.species), inverse_masses(), kick});
+        const integrate::Kick stage{data(kVelocity, store.velocity), data(kForce, store.force),
+                                    data(kSpecies, store.species), inverse_masses(), kick};
+        // The thermostat that follows needs the kinetic energy: summed in the same pass.
+        if (thermostat && !bodies()) {
+            kick_kinetic = exec::transform_sum<double>(
+                target, store.n_owned(),
+                exec::ThenMeasure<integrate::Kick, integrate::FreeKineticEnergy>{stage, kinetic_energy()});
+            kick_kinetic_known = true;
+        } else {
+            exec::for_each(target, store.n_owned(), stage);
+        }
         backend_wrote(kVelocity);
         if (bodies()) {
             rigid.kick(target, body_arrays(kPosition | kVelocity | kForce | kSpecies | kOrientation |
@@ -613,7 +646,10 @@ struct Simulation::Engine {
         bool needed;
         {
             PhaseTimer timer(times.communicate);
-            if (mirror) {
+            if (drift_moved_known) {
+                drift_moved_known = false;
+                needed = list.rebuild_due(drift_moved_sq, comm);
+            } else if (mirror) {
                 backend_reads(kPosition);
                 const double local = exec::transform_max(target, store.n_owned(), 0.0,
                                                          SquaredDisplacement{mirror->array<Vec3>(kPosition),
@@ -653,13 +689,16 @@ struct Simulation::Engine {
 
     bool is_free(std::size_t i) const { return !store.has_rigid_fields() || store.body[i] < 0; }
 
+    /// A free particle's kinetic energy, on the back end's arrays.
+    integrate::FreeKineticEnergy kinetic_energy() const {
+        backend_reads(kVelocity | kSpecies | kBody);
+        return {data(kVelocity, store.velocity), data(kSpecies, store.species), masses(),
+                store.has_rigid_fields() ? data(kBody, store.body) : nullptr};
+    }
+
     /// Kinetic energy of free particles and bodies (spheres of bodies count through them).
     double local_kinetic() const {
-        backend_reads(kVelocity | kSpecies | kBody);
-        const integrate::FreeKineticEnergy energy{
-            data(kVelocity, store.velocity), data(kSpecies, store.species), masses(),
-            store.has_rigid_fields() ? data(kBody, store.body) : nullptr};
-        const double sum = exec::transform_sum<double>(target, store.n_owned(), energy);
+        const double sum = exec::transform_sum<double>(target, store.n_owned(), kinetic_energy());
         return sum + (bodies() ? rigid.kinetic(target, body_arrays(kVelocity | kSpecies | kOrientation |
                                                                     kAngularMomentum))
                                : 0.0);
@@ -709,7 +748,8 @@ struct Simulation::Engine {
             backend_wrote(kVelocity);
             return;
         }
-        const double kinetic = decomp::sum(comm, local_kinetic());
+        const double kinetic = decomp::sum(comm, kick_kinetic_known ? kick_kinetic : local_kinetic());
+        kick_kinetic_known = false;
         const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
         exec::for_each(target, store.n_owned(),
                        integrate::ScaleVelocity{data(kVelocity, store.velocity), factor});

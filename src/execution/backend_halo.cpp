@@ -46,12 +46,54 @@ void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror
 void BackendHalo::place_on_backend(std::vector<const int*> index, std::vector<std::size_t> count) {
     swap_index_ = std::move(index);
     swap_count_ = std::move(count);
+    traced_ = false;
     if (!asked_) direct_ = mpi_reads_device_memory(), asked_ = true;
+}
+
+bool BackendHalo::from_roots(const decomp::HaloExchange& halo) {
+    // Faces -x, +x, -y, +y, -z, +z: the two swaps of an axis never re-export each other's
+    // ghosts, so a ghost's way passes each axis at most once, and each component of its
+    // position is shifted at most once (a wedge adds two swaps: not here).
+    if (halo.n_swaps() != 6) return false;
+    for (std::size_t k = 0; k < 6; ++k) {
+        const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
+        if (!plan.to_self || plan.turns != 0) return false;
+        for (int d = 0; d < 3; ++d)
+            if (d != static_cast<int>(k / 2) && plan.shift[d] != 0) return false;
+    }
+    return true;
+}
+
+void BackendHalo::trace_roots(const Target& target, const decomp::HaloExchange& halo,
+                              ParticleMirror& mirror, std::size_t scratch_slot) {
+    const std::size_t n_owned = halo.swap_plan(0).import_first;
+    const decomp::HaloExchange::SwapPlan last = halo.swap_plan(halo.n_swaps() - 1);
+    const std::size_t n_ghost = last.import_first + last.import_count - n_owned;
+    int* roots = static_cast<int*>(mirror.scratch(scratch_slot + 1, n_ghost * sizeof(int)));
+    Vec3* shifts = static_cast<Vec3*>(mirror.scratch(scratch_slot + 2, n_ghost * sizeof(Vec3)));
+    // In swap order: a swap's sources among the ghosts were traced by the swaps before it.
+    for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
+        const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
+        exec::for_each(target, swap_count_.at(k),
+                       decomp::GhostRoot{swap_index_[k], n_owned, plan.import_first - n_owned, roots,
+                                         shifts, plan.shift});
+    }
+    roots_ = roots;
+    shifts_ = shifts;
+    traced_ = true;
 }
 
 void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
                          ParticleMirror& mirror, Vec3* x, bool is_position,
                          std::size_t scratch_slot) {
+    if (from_roots(halo)) {
+        if (!traced_) trace_roots(target, halo, mirror, scratch_slot);
+        const std::size_t n_owned = halo.swap_plan(0).import_first;
+        const decomp::HaloExchange::SwapPlan last = halo.swap_plan(halo.n_swaps() - 1);
+        exec::for_each(target, last.import_first + last.import_count - n_owned,
+                       decomp::GhostFromRoot{x, roots_, shifts_, is_position, x + n_owned});
+        return;
+    }
     for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
         const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
         const std::size_t n = swap_count_.at(k);

@@ -28,11 +28,26 @@ public:
     void place_on_backend(std::vector<const int*> index, std::vector<std::size_t> count);
     /// Ghost values of `field` (the back end's array) from their owners, along the plan:
     /// positions (shifted across periodic boundaries) or velocities (never shifted); both
-    /// rotated across wedge faces.
+    /// rotated across wedge faces. Uses the mirror's scratch slots scratch_slot to
+    /// scratch_slot + 2.
+    /// Where every swap is a rank's copy to itself with at most a shift along its own axis
+    /// (one rank, periodic box, no wedge), the ghosts are traced back to their owned roots once
+    /// per plan and refreshed in one pass from there (decomp::GhostFromRoot), the same bits as
+    /// the swaps one after another.
     void gather(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
                 Vec3* field, bool is_position, std::size_t scratch_slot);
 
+    /// Whether gather() refreshes this plan's ghosts from their roots in one pass.
+    static bool from_roots(const decomp::HaloExchange& halo);
+
 private:
+    /// Traces the current plan's ghosts to their roots (on the back end).
+    void trace_roots(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
+                     std::size_t scratch_slot);
+
+    bool traced_ = false;  ///< roots_ and shifts_ hold the current plan's
+    const int* roots_ = nullptr;
+    const Vec3* shifts_ = nullptr;
     std::vector<int> index_;  ///< export indices of all swaps, swap after swap (place())
     std::vector<const int*> swap_index_;  ///< where swap k's are on the back end
     std::vector<std::size_t> swap_count_;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <map>
 #include <utility>
 
@@ -252,4 +253,56 @@ TEST(BackendListBuild, NamesAParticleThatCannotComeHomeAsTheHostsMigrationDoes) 
     const exec::Target checking{false, true, nullptr};
     ASSERT_TRUE(list_build.build(checking, mirror, s, grid, cells, 2.0, 2.0, halo, backend_halo));
     EXPECT_EQ(list_build.fault(), host_says);
+}
+
+TEST(BackendHalo, RefreshFromRootsGivesTheSwapsBits) {
+    // One rank, periodic box: the back end refreshes every ghost from its owned root in one
+    // pass. Its positions and velocities must be bit for bit those of the swaps one after
+    // another (the host's refresh), signs of zero included: corner ghosts are shifted along
+    // three axes, and velocities of -0 pass through a swap's zero shift as +0.
+    Box box;
+    box.hi = {10, 10, 10};
+    decomp::RankGrid grid(MPI_COMM_SELF, box);
+    ParticleStore start;
+    std::uint64_t state = 12345;
+    auto uniform = [&state] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return double(state >> 11) * 0x1.0p-53;
+    };
+    for (int k = 0; k < 400; ++k) {
+        Vec3 x{10 * uniform(), 10 * uniform(), 10 * uniform()};
+        Vec3 v{uniform() - 0.5, uniform() - 0.5, uniform() - 0.5};
+        if (k % 7 == 0) x.y = -0.0, v.x = -0.0;
+        if (k % 11 == 0) x = {9.999, 0.001, 9.999};
+        start.add_owned(x, v, 0, k);
+    }
+    decomp::HaloExchange halo;
+    halo.build(start, grid, 2.5, kPosition | kVelocity);
+    ASSERT_TRUE(exec::BackendHalo::from_roots(halo));
+    ASSERT_GT(halo.n_ghost(), start.n_owned() / 2);
+    // The owners move; then each side refreshes its ghosts.
+    for (std::size_t i = 0; i < start.n_owned(); ++i)
+        start.position[i] += Vec3{0.01 * uniform(), -0.01 * uniform(), 0.02 * uniform()};
+    ParticleStore by_swaps = start, by_roots = start;
+    halo.gather_positions(by_swaps);
+    halo.gather_velocities(by_swaps);
+
+    exec::ParticleMirror mirror(exec::separate_host_memory(), true);
+    const exec::Target checking{false, true, nullptr};
+    mirror.to_backend(by_roots, kPosition | kVelocity);
+    exec::BackendHalo backend_halo;
+    backend_halo.place(halo, mirror, 0);
+    backend_halo.gather(checking, halo, mirror, mirror.array<Vec3>(kPosition), true, 0);
+    backend_halo.gather(checking, halo, mirror, mirror.array<Vec3>(kVelocity), false, 0);
+    mirror.written_on_backend(by_roots, kPosition | kVelocity);
+    mirror.to_host(by_roots, kPosition | kVelocity);
+    ASSERT_EQ(by_roots.size(), by_swaps.size());
+    std::size_t differing = 0;
+    for (std::size_t i = by_swaps.n_owned(); i < by_swaps.size(); ++i)
+        for (int d = 0; d < 3; ++d) {
+            const double a[2] = {by_swaps.position[i][d], by_swaps.velocity[i][d]};
+            const double b[2] = {by_roots.position[i][d], by_roots.velocity[i][d]};
+            differing += std::memcmp(a, b, sizeof a) != 0;
+        }
+    EXPECT_EQ(differing, 0u);
 }
