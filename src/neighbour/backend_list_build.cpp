@@ -137,6 +137,9 @@ void BackendListBuild::pack(const exec::Target& target, exec::ParticleMirror& mi
                             std::size_t count, std::uint32_t* out, bool image, const Vec3& shift,
                             int turns, const Wedge& wedge) {
     std::size_t offset = 0;
+    // The fields copied as they are go in one pass; moved positions and turned velocities in
+    // their own.
+    build::FieldGather plain;
     mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
         if (field == kForce) return;
         const unsigned words = static_cast<unsigned>(bytes / 4);
@@ -150,10 +153,16 @@ void BackendListBuild::pack(const exec::Target& target, exec::ParticleMirror& mi
                            build::TurnedCopy{static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to),
                                              wedge, turns});
         else
-            exec::for_each(target, count,
-                           build::GatherWords<int>{static_cast<const std::uint32_t*>(data), to, index, words});
+            add_field(plain, static_cast<const std::uint32_t*>(data), to, words);
         offset += count * words;
     });
+    exec::for_each(target, count, build::GatherFields<int>{plain, index});
+}
+
+void BackendListBuild::add_field(build::FieldGather& gather, const std::uint32_t* from, std::uint32_t* to,
+                                 unsigned words) {
+    if (!gather.add(from, to, words))
+        throw std::logic_error("BackendListBuild: more particle arrays than fields");
 }
 
 void BackendListBuild::unpack(exec::ParticleMirror& mirror, const std::uint32_t* in, std::size_t count,
@@ -334,12 +343,14 @@ void BackendListBuild::append_images(const exec::Target& target, exec::ParticleM
         // source lies before the new ghosts.
         plan.import_count = count;
         mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + count);
+        build::FieldGather copies;
         mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
             if (field == kForce || field == kPosition) return;
             const unsigned words = static_cast<unsigned>(bytes / 4);
             std::uint32_t* a = static_cast<std::uint32_t*>(data);
-            exec::for_each(target, count, build::GatherWords<int>{a, a + plan.import_first * words, index, words});
+            add_field(copies, a, a + plan.import_first * words, words);
         });
+        exec::for_each(target, count, build::GatherFields<int>{copies, index});
         Vec3* x = mirror.array<Vec3>(kPosition);
         exec::for_each(target, count,
                        decomp::GhostImage{x, index, x + plan.import_first, wedge, plan.turns, plan.shift});

@@ -27,6 +27,9 @@
 #include "rigid/rigid_bodies.hpp"
 
 namespace emergent {
+namespace build {
+struct FieldGather;
+}
 
 class BackendListBuild {
 public:
@@ -110,6 +113,8 @@ private:
     /// Every array but the forces of particles index[0 .. count), field block after field
     /// block, into `out` (on the back end); positions as images (shifted, turned) where
     /// `image`, velocities turned.
+    static void add_field(build::FieldGather& gather, const std::uint32_t* from, std::uint32_t* to,
+                          unsigned words);
     void pack(const exec::Target& target, exec::ParticleMirror& mirror, const int* index,
               std::size_t count, std::uint32_t* out, bool image, const Vec3& shift, int turns,
               const Wedge& wedge);

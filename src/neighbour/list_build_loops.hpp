@@ -275,17 +275,38 @@ struct CellKey {
     }
 };
 
-/// to[k] = from[order[k]], for elements of `words` 32-bit words: one particle array of any
-/// field moved into a new order, or ghosts copied from their owners (to past the owners).
+/// The particle arrays to move alike (GatherFields): each as 32-bit words, `words` per
+/// particle, whatever the field holds.
+struct FieldGather {
+    static constexpr int kMaxFields = 11;  ///< every FieldMask bit
+    const std::uint32_t* from[kMaxFields];
+    std::uint32_t* to[kMaxFields];
+    unsigned words[kMaxFields];
+    int n_fields = 0;
+    /// Adds a field: `words` 32-bit words per particle. False where the table is full.
+    bool add(const std::uint32_t* a, std::uint32_t* b, unsigned w) {
+        if (n_fields == kMaxFields) return false;
+        from[n_fields] = a, to[n_fields] = b, words[n_fields] = w;
+        ++n_fields;
+        return true;
+    }
+};
+
+/// to_f[k] = from_f[order[k]] for every field f of the table: the arrays moved into a new order,
+/// or ghosts copied from their owners (to past the owners), in one pass (the order read once;
+/// one launch on a device, not one per field).
 template <class Index>
-struct GatherWords {
-    const std::uint32_t* from;
-    std::uint32_t* to;
+struct GatherFields {
+    FieldGather fields;
     const Index* order;
-    unsigned words;
     EMERGENT_HD void operator()(std::size_t k) const {
-        const std::size_t a = static_cast<std::size_t>(order[k]) * words, b = k * words;
-        for (unsigned w = 0; w < words; ++w) to[b + w] = from[a + w];
+        const std::size_t i = static_cast<std::size_t>(order[k]);
+        for (int f = 0; f < fields.n_fields; ++f) {
+            const unsigned words = fields.words[f];
+            const std::uint32_t* a = fields.from[f] + i * words;
+            std::uint32_t* b = fields.to[f] + k * words;
+            for (unsigned w = 0; w < words; ++w) b[w] = a[w];
+        }
     }
 };
 
