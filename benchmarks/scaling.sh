@@ -68,7 +68,7 @@ done
 /usr/bin/python3 - "$out" "$mode" "$cores" "$rounds" "${ranks[@]}" <<'PY'
 import json, statistics, sys
 out, mode, cores, rounds, ranks = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), [int(r) for r in sys.argv[5:]]
-parts = ["force", "neighbour", "migrate", "communicate", "halo_wait", "integrate", "imbalance"]
+parts = ["force", "neighbour", "migrate", "communicate", "halo_wait", "integrate", "collective_wait", "imbalance"]
 rows = []
 for np_ in ranks:
     runs = [json.load(open(f"{out}/np{np_}_round{r}.json")) for r in range(1, rounds + 1)]
@@ -81,12 +81,15 @@ for np_ in ranks:
            "msgs": med(lambda s: (s["messages_ghost_refresh"] + s["messages_ghost_build"] + s["messages_migration"]) / steps / s["ranks"]),
            "kbytes": med(lambda s: (s["message_bytes_ghost_refresh"] + s["message_bytes_ghost_build"] + s["message_bytes_migration"]) / steps / s["ranks"] / 1e3)}
     for p in parts:
-        row[p] = med(lambda s: s[f"seconds_{p}"] / steps * 1e3)
+        # Runs from before a part was timed lack it: nan.
+        row[p] = med(lambda s: s.get(f"seconds_{p}", float("nan")) / steps * 1e3)
     rows.append(row)
 base = rows[0]
 print(f"# median of {rounds} rounds; times in ms per step (slowest rank's, except imbalance: "
       "slowest compute less the mean); neighbour includes migrate; halo_wait (blocked on ghost data) "
-      "lies inside communicate, or inside force where the refresh overlaps; messages and kB per rank per step")
+      "lies inside communicate, or inside force where the refresh overlaps; collective_wait (in the "
+      "step's global reductions: the rebuild vote, the thermostat's sum) inside communicate and "
+      "integrate; messages and kB per rank per step")
 print("# ranks  grid    N         step_ms  efficiency  " + "  ".join(f"{p:>11s}" for p in parts)
       + "  msgs  kB/step  B/particle  note")
 for r in rows:

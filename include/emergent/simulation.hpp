@@ -157,6 +157,9 @@ struct PhaseTimes {
     /// Blocked waiting for ghost data in refreshes (inside `communicate`, or inside `force`
     /// where the refresh overlaps the forces).
     double halo_wait = 0;
+    /// In the step's global reductions (the rebuild vote, inside `communicate`; the
+    /// thermostat's kinetic energy, inside `integrate`): mostly waiting for the slowest rank.
+    double collective_wait = 0;
 };
 
 /// A particle system decomposed over the ranks of a communicator.

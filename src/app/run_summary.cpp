@@ -97,6 +97,9 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     field("seconds_communicate", number(decomp::max(comm, p.communicate)));
     // Blocked on ghost data (inside communicate, or inside force where the refresh overlaps).
     field("seconds_halo_wait", number(decomp::max(comm, p.halo_wait)));
+    // In the step's global reductions (inside communicate and integrate): a rank waits there
+    // for the slowest, step by step, which the run-long imbalance below averages away.
+    field("seconds_collective_wait", number(decomp::max(comm, p.collective_wait)));
     field("halo_overlap", sim.halo_overlap() ? "true" : "false");
     field("interior_fraction", number(decomp::sum(comm, sim.interior_fraction()) / sim.n_ranks()));
     // Load imbalance: how much longer the slowest rank computed (forces and integration) than

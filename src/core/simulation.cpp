@@ -646,18 +646,19 @@ struct Simulation::Engine {
         bool needed;
         {
             PhaseTimer timer(times.communicate);
+            double local;
             if (drift_moved_known) {
                 drift_moved_known = false;
-                needed = list.rebuild_due(drift_moved_sq, comm);
+                local = drift_moved_sq;
             } else if (mirror) {
                 backend_reads(kPosition);
-                const double local = exec::transform_max(target, store.n_owned(), 0.0,
-                                                         SquaredDisplacement{mirror->array<Vec3>(kPosition),
-                                                                             reference_on_backend});
-                needed = list.rebuild_due(local, comm);
+                local = exec::transform_max(target, store.n_owned(), 0.0,
+                                            SquaredDisplacement{mirror->array<Vec3>(kPosition), reference_on_backend});
             } else {
-                needed = list.needs_rebuild(store, comm);
+                local = list.max_displacement_sq(store);
             }
+            PhaseTimer voting(times.collective_wait);
+            needed = list.rebuild_due(local, comm);
         }
         if (balance_due) {
             balance_due = false;
@@ -735,7 +736,10 @@ struct Simulation::Engine {
                                           masses(), data(kBody, store.body)});
             double sums[5] = {local.mass, local.kinetic, local.momentum.x, local.momentum.y,
                               local.momentum.z};
-            MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
+            {
+                PhaseTimer summing(times.collective_wait);
+                MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
+            }
             if (n_free < 2 || !(sums[0] > 0)) return;
             const Vec3 momentum{sums[2], sums[3], sums[4]};
             const double relative = sums[1] - 0.5 * dot(momentum, momentum) / sums[0];
@@ -748,8 +752,13 @@ struct Simulation::Engine {
             backend_wrote(kVelocity);
             return;
         }
-        const double kinetic = decomp::sum(comm, kick_kinetic_known ? kick_kinetic : local_kinetic());
+        const double local = kick_kinetic_known ? kick_kinetic : local_kinetic();
         kick_kinetic_known = false;
+        double kinetic;
+        {
+            PhaseTimer summing(times.collective_wait);
+            kinetic = decomp::sum(comm, local);
+        }
         const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
         exec::for_each(target, store.n_owned(),
                        integrate::ScaleVelocity{data(kVelocity, store.velocity), factor});

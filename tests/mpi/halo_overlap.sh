@@ -4,7 +4,8 @@
 # first either way, and the boundary rows only after the ghosts have arrived. Without either
 # (off) the particles keep the plain cell order: that run completes too. Checked on 2 and 4 ranks for the LJ fluid
 # and for two granular scenes (contacts with walls and gravity); the summary must say the
-# overlap ran and report a non-empty interior.
+# overlap ran and report a non-empty interior, and its time in global reductions within the
+# phases that hold them.
 # usage: halo_overlap.sh EMERGENT MPIRUN
 set -euo pipefail
 . "$(dirname "$0")/../support/mpi_run.sh"
@@ -20,6 +21,11 @@ if want == "on" and not 0 < s["interior_fraction"] < 1:
     sys.exit(f"FAIL: {d}: interior_fraction = {s['interior_fraction']}, expected in (0, 1)")
 if s["seconds_halo_wait"] < 0:
     sys.exit(f"FAIL: {d}: negative halo wait {s['seconds_halo_wait']}")
+# The global reductions' time lies inside communicate and integrate (each the slowest rank's),
+# and the rebuild vote runs every step: more than nothing.
+wait, inside = s["seconds_collective_wait"], s["seconds_communicate"] + s["seconds_integrate"]
+if not 0 < wait <= inside:
+    sys.exit(f"FAIL: {d}: collective wait {wait} s, expected in (0, {inside}]")
 PY
 }
 
