@@ -27,6 +27,10 @@ struct ForceContext {
     /// need no ghost and the rest, computing the first while ghost positions are in flight.
     /// Only terms whose honours_range() is true are called with less than all rows.
     std::size_t first = 0, last = static_cast<std::size_t>(-1);
+    /// On the back end: the owned particles' forces hold nothing yet, and the term's forces
+    /// replace them instead of adding (the engine skips clearing them; only for its first
+    /// term, and only where that term says ForceTerm::stores_on_backend()).
+    bool replace_forces = false;
 };
 
 /// Potential energy and virial accumulated by force terms on sampling steps.
@@ -77,6 +81,9 @@ public:
     /// virial, with the same meaning as add_forces().
     virtual void add_forces_on_backend(const BackendParticles& particles, const ForceContext& context,
                                        bool sample, ForceSums& sums) const;
+    /// True when add_forces_on_backend() writes every owned particle's force and honours
+    /// context.replace_forces: as the first term, it spares the engine a pass clearing them.
+    virtual bool stores_on_backend() const { return false; }
 };
 
 /// Lennard-Jones 4 eps [(sigma/r)^12 - (sigma/r)^6], truncated at `cutoff` and shifted to zero

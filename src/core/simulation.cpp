@@ -526,10 +526,17 @@ struct Simulation::Engine {
         if (full_list) {
             backend_reads(particle_fields | ghost_fields | kSpecies);
             BackendParticles particles = backend_particles();
-            exec::for_each(target, particles.size, integrate::ZeroVector{particles.force});
             sums = ForceSums{};
-            const ForceContext context{&mass, box, at};
-            for (const auto& term : forces) term->add_forces_on_backend(particles, context, sample, sums);
+            ForceContext context{&mass, box, at};
+            // A first term that writes every owned force spares the pass clearing them; the
+            // ghosts' are cleared all the same.
+            const bool replace = !bodies() && !forces.empty() && forces.front()->stores_on_backend();
+            const std::size_t cleared = replace ? particles.n_owned : 0;
+            exec::for_each(target, particles.size - cleared, integrate::ZeroVector{particles.force + cleared});
+            for (const auto& term : forces) {
+                context.replace_forces = replace && term == forces.front();
+                term->add_forces_on_backend(particles, context, sample, sums);
+            }
             backend_wrote(kForce);
             if (bodies()) {
                 rigid.sum_forces(target, body_arrays(kPosition), data(kPosition, store.position),

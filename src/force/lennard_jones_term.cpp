@@ -37,19 +37,23 @@ public:
     bool honours_range() const override { return true; }
 
     bool on_backend() const override { return !generic_; }
-    void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
+    bool stores_on_backend() const override { return true; }
+    void add_forces_on_backend(const BackendParticles& p, const ForceContext& context, bool sample,
                                ForceSums& sums) const override {
         const force::CompressedNeighbours list{p.list_offset, p.list_index};
+        // Each owned particle's row is summed from zero, so replacing gives the bits adding to
+        // a cleared force does (0 + s = s: a sum started at +0 is never -0).
+        const bool accumulate = !context.replace_forces;
         if (!sample) {
             exec::for_each(p.target, p.n_owned,
                            force::PairForceFullList<force::LennardJones>{
-                               p.position, p.force, list, eval_, {}, nullptr, nullptr, true});
+                               p.position, p.force, list, eval_, {}, nullptr, nullptr, accumulate});
             return;
         }
         exec::for_each(p.target, p.n_owned,
                        force::PairForceFullList<force::LennardJones, force::CompressedNeighbours,
                                                 force::DirectSeparation, true>{
-                           p.position, p.force, list, eval_, {}, p.energy, p.virial, true});
+                           p.position, p.force, list, eval_, {}, p.energy, p.virial, accumulate});
         // Each particle holds half of each of its pairs: an owned-ghost pair's other half is
         // counted by the rank that owns the ghost, as with the half list.
         sums.potential += exec::transform_sum<double>(p.target, p.n_owned, exec::ElementOf<Real>{p.energy});
