@@ -42,6 +42,10 @@ struct BondCensus {
     /// Clusters of `size` members in which every member has `degree` bonds (a closed shell:
     /// 60 members of degree 5).
     int complete_clusters(int size, int degree) const;
+    /// The sizes, ascending, of the clusters of two or more members in which every member has
+    /// `degree` bonds: closed shells of any size (the 60-member shell, and smaller cages the
+    /// same particles can close into).
+    std::vector<int> closed_cluster_sizes(int degree) const;
     int largest_cluster() const;
     /// Fraction of the bodies in clusters whose size lies in each group: group g holds sizes
     /// (upper[g-1], upper[g]] with upper[-1] = 0 (e.g. {1, 5, 50, 59, 60}).

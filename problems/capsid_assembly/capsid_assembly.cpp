@@ -268,9 +268,19 @@ public:
         if (events_every_ == 0) tally(census, sim.step_index(), sample_every_);
         last_shells_ = census.complete_clusters(kShell, kFullDegree);
         last_largest_ = census.largest_cluster();
+        // Closed cages by size (every member fully bonded): the shell, and smaller cages the
+        // particles close into instead (entry n - 1 for n members; larger ones in the last).
+        std::vector<double> closed(kShell, 0.0);
+        double closed_mass = 0;
+        for (const int n : census.closed_cluster_sizes(kFullDegree)) {
+            closed[std::size_t(std::min(n, kShell) - 1)] += 1;
+            closed_mass += n;
+        }
         return {{"bonds", {double(census.bonds.size())}},
                 {"clusters", {double(census.cluster_size.size())}},
                 {"complete_shells", {double(last_shells_)}},
+                {"closed_by_size", closed},
+                {"closed_mass_fraction", {closed_mass / double(std::max<std::size_t>(1, census.bodies.size()))}},
                 {"largest_cluster", {double(last_largest_)}},
                 {"dimers", {double(dimers)}},
                 {"mass_fractions", census.mass_fractions(kGroups)},

@@ -35,6 +35,18 @@ int BondCensus::complete_clusters(int size, int full_degree) const {
     return int(std::count(complete.begin(), complete.end(), 1));
 }
 
+std::vector<int> BondCensus::closed_cluster_sizes(int full_degree) const {
+    std::vector<char> closed(cluster_size.size());
+    for (std::size_t c = 0; c < cluster_size.size(); ++c) closed[c] = cluster_size[c] >= 2;
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+        if (degree[b] != full_degree) closed[std::size_t(cluster[b])] = 0;
+    std::vector<int> sizes;
+    for (std::size_t c = 0; c < cluster_size.size(); ++c)
+        if (closed[c]) sizes.push_back(cluster_size[c]);
+    std::sort(sizes.begin(), sizes.end());
+    return sizes;
+}
+
 int BondCensus::largest_cluster() const {
     return cluster_size.empty() ? 0 : *std::max_element(cluster_size.begin(), cluster_size.end());
 }

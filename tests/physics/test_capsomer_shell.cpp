@@ -202,6 +202,7 @@ TEST(Capsomer, BondCensusOfTheExactShell) {
     for (const int d : full.degree) EXPECT_EQ(d, 5);
     EXPECT_EQ(full.cluster_size, std::vector<int>{60});
     EXPECT_EQ(full.complete_clusters(60, 5), 1);
+    EXPECT_EQ(full.closed_cluster_sizes(5), std::vector<int>{60});
     EXPECT_EQ(full.mass_fractions({1, 5, 50, 59, 60}), (std::vector<double>{0, 0, 0, 0, 1}));
 
     // One particle removed: its 5 bonds go, a 59-cluster that is no shell.
@@ -211,6 +212,7 @@ TEST(Capsomer, BondCensusOfTheExactShell) {
     EXPECT_EQ(less.bonds.size(), 145u);
     EXPECT_EQ(less.cluster_size, std::vector<int>{59});
     EXPECT_EQ(less.complete_clusters(60, 5), 0);
+    EXPECT_TRUE(less.closed_cluster_sizes(5).empty());
 
     // Particle 0's five neighbours removed: it is left alone, beside a 54-cluster.
     std::set<int> neighbours;
@@ -230,6 +232,9 @@ TEST(Capsomer, BondCensusOfTheExactShell) {
     EXPECT_EQ(apart.largest_cluster(), 54);
     EXPECT_EQ(apart.cluster_size.size(), 2u);
     EXPECT_EQ(apart.degree[0], 0);
+    // Neither the 54-cluster nor the lone particle is a closed cage.
+    EXPECT_TRUE(apart.closed_cluster_sizes(5).empty());
+    EXPECT_EQ(apart.closed_cluster_sizes(0), std::vector<int>{});
 }
 
 TEST(Capsomer, ShellAcrossThePeriodicBoundary) {
