@@ -135,7 +135,9 @@ T transform_sum(Cuda backend, std::size_t n, const F& f) {
     return cuda_detail::reduce(backend, n, T{}, f, cuda_detail::Sum{});
 }
 
-/// See the host version: the same value on both back ends.
+/// See the host version: the same value on both back ends. f may write to its own particle
+/// (exec::ThenMeasure), as in transform_sum_if below: CUB's single-pass reduce reads each item
+/// once.
 template <class T, class F>
 T transform_max(Cuda backend, std::size_t n, T init, const F& f) {
     return cuda_detail::reduce(backend, n, init, f, cuda_detail::MaxKeepingNan{});

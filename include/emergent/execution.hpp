@@ -37,8 +37,9 @@ struct Then {
 };
 
 /// A per-particle stage, then a measure of the particle it leaves (returned): the stage and a
-/// reduction over its result in one pass (transform_sum, transform_max), e.g. a drift and the
-/// displacement since the list was built. Only for a stage that touches particle i's data alone.
+/// reduction over its result in one pass (transform_sum, transform_max, which call it once for
+/// every particle), e.g. a drift and the displacement since the list was built. Only for a
+/// stage that touches particle i's data alone.
 template <class Stage, class Measure>
 struct ThenMeasure {
     Stage stage;
@@ -109,14 +110,12 @@ EMERGENT_HD EMERGENT_INLINE T max_keeping_nan(const T& a, const T& b) {
 }
 
 /// The largest of init and f(i) over i < n; a NaN anywhere is the result (max_keeping_nan).
-/// Exact on both back ends (a maximum does not depend on the order).
+/// Exact on both back ends (a maximum does not depend on the order). f(i) is called once for
+/// every i, a NaN or not, so f may also act on particle i (exec::ThenMeasure).
 template <class T, class F>
 T transform_max(Host, std::size_t n, T init, const F& f) {
     T best = init;
-    for (std::size_t i = 0; i < n; ++i) {
-        best = max_keeping_nan(best, f(i));
-        if (best != best) break;
-    }
+    for (std::size_t i = 0; i < n; ++i) best = max_keeping_nan(best, f(i));
     return best;
 }
 

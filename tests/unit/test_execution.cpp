@@ -40,6 +40,35 @@ TEST(Execution, MaxKeepsInitAndNan) {
     EXPECT_TRUE(std::isnan(exec::max_keeping_nan(std::nan(""), 1.0)));
 }
 
+namespace {
+struct Double {
+    double* a;
+    void operator()(std::size_t i) const { a[i] *= 2; }
+};
+struct Element {
+    const double* a;
+    double operator()(std::size_t i) const { return a[i]; }
+};
+}  // namespace
+
+TEST(Execution, StageThenMeasureActsOnEveryParticle) {
+    // A stage fused with the reduction over its result acts on every particle, also past a
+    // NaN (the step's state stays whole for the failure report), and the reduction sees what
+    // the stage left.
+    auto v = fixtures::spread_values(5000, 5);
+    v[100] = std::numeric_limits<double>::quiet_NaN();
+    auto expected = v;
+    for (double& x : expected) x *= 2;
+    const exec::ThenMeasure<Double, Element> stage{{v.data()}, {v.data()}};
+    EXPECT_TRUE(std::isnan(exec::transform_max(exec::Host{}, v.size(), 0.0, stage)));
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (i != 100) ASSERT_EQ(v[i], expected[i]) << i;
+    v[100] = 1;
+    double sum = 0;
+    for (double x : v) sum += 2 * x;
+    EXPECT_EQ(exec::transform_sum<double>(exec::Host{}, v.size(), stage), sum);
+}
+
 TEST(Execution, ExclusiveScanInPlaceAndTotal) {
     std::vector<std::uint32_t> keys, values;
     fixtures::repeated_keys(777, 6, 5, keys, values);
