@@ -13,7 +13,7 @@ set -euo pipefail
 exe=$1
 root=$(cd "$(dirname "$0")/../.." && pwd)
 [ "${EMERGENT_TEST_PARAVIEW:-1}" = 0 ] && { echo "skipped: EMERGENT_TEST_PARAVIEW=0"; exit 77; }
-for tool in pvbatch xvfb-run ffmpeg ffprobe; do
+for tool in pvbatch Xvfb ffmpeg ffprobe; do
   command -v $tool >/dev/null || { echo "FAIL: $tool not installed (bash scripts/setup --tests)"; exit 1; }
 done
 dir=$(mktemp -d)
@@ -51,14 +51,19 @@ n=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_r
 echo "ok: a movie of 11 frames"
 # scripts/replay: the state file of each scene's default view opens the run in ParaView
 # (tests/support/state_check.py, under pvbatch: times, points, what is shown).
-state_check() {  # RUN VIEW; one more try as in scripts/render (xvfb-run -a's display pick)
+. "$root/scripts/render_views/headless.sh"
+state_check() {  # RUN VIEW; on a private X server, one more try as in scripts/render
   local state
   state=$("$root/scripts/replay" "$dir/$1" --state-only) ||
     { grep -v '^ *[0-9]* *0x' "$dir/$1/render/$2.log" | tail -n 30; exit 1; }
   [ "$state" = "$(cd "$dir/$1" && pwd)/render/$2.pvsm" ] || { echo "FAIL: replay wrote '$state'"; exit 1; }
-  xvfb-run -a -n $((100 + RANDOM % 5000)) pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" 2>&1 | tail -n 1 | grep '^ok' ||
-    { sleep 2; xvfb-run -a -n $((100 + RANDOM % 5000)) pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" 2>&1 | tail -n 1 | grep '^ok'; } ||
-    { echo "FAIL: the state of $1 ($2) does not open the run"; exit 1; }
+  local log=$dir/$1/render/$2.check.log
+  { headless 400 400 "$log" pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" &&
+      tail -n 1 "$log" | grep -q '^ok'; } ||
+    { sleep 2; : >"$log"; headless 400 400 "$log" pvbatch "$root/tests/support/state_check.py" "$state" "$dir/$1" "$2" &&
+      tail -n 1 "$log" | grep -q '^ok'; } ||
+    { echo "FAIL: the state of $1 ($2) does not open the run: $(tail -n 5 "$log")"; exit 1; }
+  tail -n 1 "$log"
 }
 state_check drum cutaway
 state_check rb convection_oblique
