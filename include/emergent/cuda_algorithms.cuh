@@ -136,7 +136,7 @@ T transform_sum(Cuda backend, std::size_t n, const F& f) {
 }
 
 /// See the host version: the same value on both back ends. f may write to its own particle
-/// (exec::ThenMeasure), as in transform_sum_if below: CUB's single-pass reduce reads each item
+/// (exec::Then), as in transform_sum_if below: CUB's single-pass reduce reads each item
 /// once.
 template <class T, class F>
 T transform_max(Cuda backend, std::size_t n, T init, const F& f) {

@@ -24,29 +24,17 @@
 namespace emergent::exec {
 
 /// Two per-particle functors fused into one pass: second(i) runs right after first(i), so it
-/// reads what first just wrote from cache rather than from memory. Only for functors that
-/// touch particle i's data alone.
+/// reads what first just wrote from cache rather than from memory, and its result is the
+/// pass's: a stage then a measure of the particle it leaves, reduced in the same pass
+/// (transform_sum, transform_max, which call it once for every particle), e.g. a drift and the
+/// displacement since the list was built. Only for functors that touch particle i's data alone.
 template <class First, class Second>
 struct Then {
     First first;
     Second second;
-    EMERGENT_HD void operator()(std::size_t i) const {
-        first(i);
-        second(i);
-    }
-};
-
-/// A per-particle stage, then a measure of the particle it leaves (returned): the stage and a
-/// reduction over its result in one pass (transform_sum, transform_max, which call it once for
-/// every particle), e.g. a drift and the displacement since the list was built. Only for a
-/// stage that touches particle i's data alone.
-template <class Stage, class Measure>
-struct ThenMeasure {
-    Stage stage;
-    Measure measure;
     EMERGENT_HD auto operator()(std::size_t i) const {
-        stage(i);
-        return measure(i);
+        first(i);
+        return second(i);
     }
 };
 
@@ -111,7 +99,7 @@ EMERGENT_HD EMERGENT_INLINE T max_keeping_nan(const T& a, const T& b) {
 
 /// The largest of init and f(i) over i < n; a NaN anywhere is the result (max_keeping_nan).
 /// Exact on both back ends (a maximum does not depend on the order). f(i) is called once for
-/// every i, a NaN or not, so f may also act on particle i (exec::ThenMeasure).
+/// every i, a NaN or not, so f may also act on particle i (exec::Then).
 template <class T, class F>
 T transform_max(Host, std::size_t n, T init, const F& f) {
     T best = init;

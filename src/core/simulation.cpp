@@ -599,7 +599,7 @@ struct Simulation::Engine {
         if (const Vec3* x0 = boundaries.empty() && !bodies() ? check_origin() : nullptr) {
             drift_moved_sq = exec::transform_max(
                 target, store.n_owned(), 0.0,
-                exec::ThenMeasure<integrate::KickDrift, SquaredDisplacement>{stage, {stage.x, x0}});
+                exec::Then<integrate::KickDrift, SquaredDisplacement>{stage, {stage.x, x0}});
             drift_moved_known = true;
         } else {
             exec::for_each(target, store.n_owned(), stage);
@@ -630,7 +630,7 @@ struct Simulation::Engine {
         if (thermostat && !bodies()) {
             kick_kinetic = exec::transform_sum<double>(
                 target, store.n_owned(),
-                exec::ThenMeasure<integrate::Kick, integrate::FreeKineticEnergy>{stage, kinetic_energy()});
+                exec::Then<integrate::Kick, integrate::FreeKineticEnergy>{stage, kinetic_energy()});
             kick_kinetic_known = true;
         } else {
             exec::for_each(target, store.n_owned(), stage);

@@ -46,7 +46,7 @@ void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror
 void BackendHalo::place_on_backend(std::vector<const int*> index, std::vector<std::size_t> count) {
     swap_index_ = std::move(index);
     swap_count_ = std::move(count);
-    traced_ = false;
+    refresh_ = Refresh::undecided;
     if (!asked_) direct_ = mpi_reads_device_memory(), asked_ = true;
 }
 
@@ -66,32 +66,31 @@ bool BackendHalo::from_roots(const decomp::HaloExchange& halo) {
 
 void BackendHalo::trace_roots(const Target& target, const decomp::HaloExchange& halo,
                               ParticleMirror& mirror, std::size_t scratch_slot) {
-    const std::size_t n_owned = halo.swap_plan(0).import_first;
+    n_owned_ = halo.swap_plan(0).import_first;
     const decomp::HaloExchange::SwapPlan last = halo.swap_plan(halo.n_swaps() - 1);
-    const std::size_t n_ghost = last.import_first + last.import_count - n_owned;
-    int* roots = static_cast<int*>(mirror.scratch(scratch_slot + 1, n_ghost * sizeof(int)));
-    Vec3* shifts = static_cast<Vec3*>(mirror.scratch(scratch_slot + 2, n_ghost * sizeof(Vec3)));
+    n_ghost_ = last.import_first + last.import_count - n_owned_;
+    int* roots = static_cast<int*>(mirror.scratch(scratch_slot + 1, n_ghost_ * sizeof(int)));
+    Vec3* shifts = static_cast<Vec3*>(mirror.scratch(scratch_slot + 2, n_ghost_ * sizeof(Vec3)));
     // In swap order: a swap's sources among the ghosts were traced by the swaps before it.
     for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
         const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
         exec::for_each(target, swap_count_.at(k),
-                       decomp::GhostRoot{swap_index_[k], n_owned, plan.import_first - n_owned, roots,
+                       decomp::GhostRoot{swap_index_[k], n_owned_, plan.import_first - n_owned_, roots,
                                          shifts, plan.shift});
     }
     roots_ = roots;
     shifts_ = shifts;
-    traced_ = true;
 }
 
 void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
                          ParticleMirror& mirror, Vec3* x, bool is_position,
                          std::size_t scratch_slot) {
-    if (from_roots(halo)) {
-        if (!traced_) trace_roots(target, halo, mirror, scratch_slot);
-        const std::size_t n_owned = halo.swap_plan(0).import_first;
-        const decomp::HaloExchange::SwapPlan last = halo.swap_plan(halo.n_swaps() - 1);
-        exec::for_each(target, last.import_first + last.import_count - n_owned,
-                       decomp::GhostFromRoot{x, roots_, shifts_, is_position, x + n_owned});
+    if (refresh_ == Refresh::undecided) {
+        refresh_ = from_roots(halo) ? Refresh::from_roots : Refresh::by_swaps;
+        if (refresh_ == Refresh::from_roots) trace_roots(target, halo, mirror, scratch_slot);
+    }
+    if (refresh_ == Refresh::from_roots) {
+        exec::for_each(target, n_ghost_, decomp::GhostFromRoot{x, roots_, shifts_, is_position, x + n_owned_});
         return;
     }
     for (std::size_t k = 0; k < halo.n_swaps(); ++k) {

@@ -45,9 +45,11 @@ private:
     void trace_roots(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
                      std::size_t scratch_slot);
 
-    bool traced_ = false;  ///< roots_ and shifts_ hold the current plan's
-    const int* roots_ = nullptr;
+    /// How the current plan is refreshed, decided at its first refresh.
+    enum class Refresh { undecided, from_roots, by_swaps } refresh_ = Refresh::undecided;
+    const int* roots_ = nullptr;  ///< from_roots: each ghost's owned root and total shift
     const Vec3* shifts_ = nullptr;
+    std::size_t n_owned_ = 0, n_ghost_ = 0;
     std::vector<int> index_;  ///< export indices of all swaps, swap after swap (place())
     std::vector<const int*> swap_index_;  ///< where swap k's are on the back end
     std::vector<std::size_t> swap_count_;

@@ -52,6 +52,10 @@ grep -q "60 1.000$" "$dir/cs/mass.txt" || { echo "FAIL: the shell's mass fractio
 "$scripts/capsid_cages" "$dir/cs" >"$dir/cs/cages.txt"
 awk -F'|' '$2 + 0 == 60 && $6 ~ /yes/ && ($3 - 4.215747) ^ 2 < 0.04 ^ 2 {found = 1} END {exit !found}' \
   "$dir/cs/cages.txt" || { echo "FAIL: the shell's cage: $(cat "$dir/cs/cages.txt")"; exit 1; }
+for bad in "$dir/none" "$dir/cs x" "$dir/cs 6 99"; do  # bad input: one line, status 1
+  rc=0; err=$("$scripts/capsid_cages" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_cages $bad: status $rc, $err"; exit 1; }
+done
 # Table 1 beside ours, from a committed log: e = 0.15 averages its two seeds' rows (monomers
 # 0.370 and 0.447; 2-5 plus 6-50: 0.630 and 0.553).
 "$scripts/plot_capsid_table1" "$dir/cs/table1.png" "$scripts/../benchmarks/logs/capsid_table1_2026-12-03.log" >"$dir/cs/table1.txt"

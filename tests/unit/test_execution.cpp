@@ -59,7 +59,7 @@ TEST(Execution, StageThenMeasureActsOnEveryParticle) {
     v[100] = std::numeric_limits<double>::quiet_NaN();
     auto expected = v;
     for (double& x : expected) x *= 2;
-    const exec::ThenMeasure<Double, Element> stage{{v.data()}, {v.data()}};
+    const exec::Then<Double, Element> stage{{v.data()}, {v.data()}};
     EXPECT_TRUE(std::isnan(exec::transform_max(exec::Host{}, v.size(), 0.0, stage)));
     for (std::size_t i = 0; i < v.size(); ++i)
         if (i != 100) ASSERT_EQ(v[i], expected[i]) << i;
