@@ -9,7 +9,8 @@
 #       continues it from its checkpoint; runs until STEPS (1e8) or SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
 #       CAPSOMERS (300), SOLVENT (implicit), SAMPLE (20000 steps), EVENTS (50 steps),
-#       CHECKPOINT (200000) override.
+#       CHECKPOINT (200000) override; SET="key=value ..." adds scene settings (e.g. the site
+#       rows: SET="site_depth_outer=0").
 #   benchmarks/capsid_assembly_long.sh table RUN_DIR...      mass fractions by size group at
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
 #       complete shell, the last sample; and P_n = g / (g + l) by size from the tallies at the
@@ -54,7 +55,9 @@ run)
   if [ -f "$dir/checkpoint.h5" ]; then
     exec "$exe" run --restart "$dir/checkpoint.h5" -o "$dir"
   fi
-  exec "$exe" run capsid-assembly --set capsomers="${CAPSOMERS:-300}" --set particle_fraction=0.033 \
+  extra=()
+  for kv in ${SET:-}; do extra+=(--set "$kv"); done
+  exec "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction=0.033 \
     --set solvent="${SOLVENT:-implicit}" --set start=monomers --set attraction="$2" --set seed="$3" \
     --set steps="${STEPS:-100000000}" --set sample_every="${SAMPLE:-20000}" --set events_every="${EVENTS:-50}" \
     --set progress_interval=600 \

@@ -41,7 +41,13 @@ Capsomer design(const Config& c) {
     if (edge < 1)
         throw InputError(c.scene() + ": edge=" + c.text("edge") + " is below 1, the spheres' diameter "
                          "(0 takes the shape's own)");
-    Capsomer d = ph ? ph_capsomer(edge) : pw_capsomer(edge);
+    SiteDepths depths;
+    depths.outer = c.real("site_depth_outer");
+    depths.inner = c.real("site_depth_inner");
+    if (!(depths.outer < depths.inner))
+        throw InputError(c.scene() + ": site_depth_outer=" + c.text("site_depth_outer") +
+                         " must be smaller than site_depth_inner=" + c.text("site_depth_inner"));
+    Capsomer d = ph ? ph_capsomer(edge, depths) : pw_capsomer(edge, depths);
     // The sphere recipe keeps neighbours' spheres apart only on faces large enough for it:
     // in the closed shell no two spheres of different capsomers may lie within the WCA range.
     const std::vector<Quat> group = icosahedral_rotations();
@@ -56,6 +62,23 @@ Capsomer design(const Config& c) {
           << " apart, inside the WCA range 1.1225";
         throw InputError(m.str());
     }
+    // The bond census needs the closed shell's contacts and nothing else: no two faces that
+    // do not meet may have all four partner pairs within the bond range.
+    const double bond_range = c.real("bond_range");
+    for (std::size_t g = 1; g < group.size(); ++g)
+        for (const std::vector<int>& face : d.faces) {
+            double far = 0;
+            for (const int a : face)
+                far = std::max(far, norm(d.sites[std::size_t(a)] -
+                                         rotate(group[g], d.sites[std::size_t(d.partner[std::size_t(a)])])));
+            if (far > 1e-6 && far < bond_range) {
+                std::ostringstream m;
+                m << c.scene() << ": site_depth_outer=" << depths.outer << ", site_depth_inner="
+                  << depths.inner << " and bond_range=" << bond_range << " would count faces "
+                  << far << " apart in the closed shell as a bond";
+                throw InputError(m.str());
+            }
+        }
     return d;
 }
 
@@ -276,7 +299,17 @@ public:
             closed[std::size_t(std::min(n, kShell) - 1)] += 1;
             closed_mass += n;
         }
+        if (cage_cost_.empty()) {  // the design's polymorphs at this e, once a run
+            SiteAttraction a;
+            a.partner = design_.partner;
+            a.epsilon = c_.real("attraction");
+            a.range = c_.real("attraction_range");
+            a.harmonic_range = c_.real("harmonic_range");
+            const double shell = closed_cage(design_, kShell, a, rule_.bond_range).energy;
+            for (const int n : {24, 12}) cage_cost_.push_back(closed_cage(design_, n, a, rule_.bond_range).energy - shell);
+        }
         return {{"bonds", {double(census.bonds.size())}},
+                {"cage_energy_above_shell", cage_cost_},
                 {"clusters", {double(census.cluster_size.size())}},
                 {"complete_shells", {double(last_shells_)}},
                 {"closed_by_size", closed},
@@ -345,6 +378,10 @@ public:
     }
 
 private:
+    /// Per capsomer, the design's lowest closed cage of 24 and of 12 above its shell (energy
+    /// of the attraction and repulsion, closed_cage): what keeps assembly from ending in them.
+    std::vector<double> cage_cost_;
+
     /// Steps between the censuses the event tallies compare.
     long long events_interval() const { return events_every_ > 0 ? events_every_ : sample_every_; }
 
@@ -446,6 +483,12 @@ ProblemInfo capsid_assembly_info() {
         .real("edge", 0, 0, 10, "sigma",
               "pw: the short edge a; ph: the long edge; 0: the shape's own (2.1, 3.6); refused "
               "where spheres of neighbours in the shell would overlap (below ~1.9 for either)")
+        .real("site_depth_outer", 0.5, 0, 1.7, "sigma",
+              "depth below the outer face of each contact's outer row of attraction sites (the "
+              "note's design: 0.5, the outer sphere layer)")
+        .real("site_depth_inner", 1.2, 0, 1.7, "sigma",
+              "depth of the inner row (the note's: 1.2, the inner sphere layer); rows farther "
+              "apart resist bending a contact, which the 24-member cage needs")
         .real("mass_ratio", 15, 0, 1e6, "m", "capsomer mass / solvent atom mass", true)
         .real("attraction", 0.09, 0, 10, "epsilon", "attraction strength e of the site pairs (eq. 6)")
         .real("attraction_range", 3, 0.5, 10, "sigma", "r_a: the attraction's range", true)
@@ -477,7 +520,8 @@ ProblemInfo capsid_assembly_info() {
                  "steps between the cluster censuses of the growth and loss tallies (0: at the "
                  "samples): a fine interval without writing samples; a continuation at another "
                  "interval starts the tallies afresh");
-    info.schema.structural({"capsomers", "particle_fraction", "density", "shape", "edge", "mass_ratio",
+    info.schema.structural({"capsomers", "particle_fraction", "density", "shape", "edge",
+                            "site_depth_outer", "site_depth_inner", "mass_ratio",
                             "attraction_range", "harmonic_range", "start", "solvent", "cluster_size"})
         .adjustable({"attraction", "bond_range", "temperature", "thermostat_tau",
                      "friction_translation", "friction_rotation", "events_every"});

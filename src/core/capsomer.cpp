@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 namespace emergent {
 
@@ -95,9 +96,23 @@ Quat axis_angle(const Vec3& axis, double angle) {
     return {std::cos(0.5 * angle), s * u.x, s * u.y, s * u.z};
 }
 
-std::vector<Quat> icosahedral_rotations() {
-    const double phi = 0.5 * (1 + std::sqrt(5.0)), pi = std::acos(-1.0);
-    const Quat generators[2] = {axis_angle({0, 1, phi}, 2 * pi / 5), axis_angle({1, 1, 1}, 2 * pi / 3)};
+CageFrame cage_frame(int members) {
+    const double phi = 0.5 * (1 + std::sqrt(5.0));
+    switch (members) {
+    case 12: return {{-1, 1, 1}, {1, -1, 1}, {1, 1, -1}, 3};
+    case 24: return {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}, 4};
+    case 60: return {{0, 1, phi}, {phi, 0, 1}, {1, phi, 0}, 5};
+    default:
+        throw std::invalid_argument("cage_frame: members=" + std::to_string(members) +
+                                    " is not 12, 24 or 60");
+    }
+}
+
+std::vector<Quat> cage_rotations(int members) {
+    const CageFrame f = cage_frame(members);
+    const double pi = std::acos(-1.0);
+    // Every frame's face a, b, c is centred on the 3-fold axis (1, 1, 1).
+    const Quat generators[2] = {axis_angle(f.a, 2 * pi / f.ring), axis_angle({1, 1, 1}, 2 * pi / 3)};
     std::vector<Quat> group{Quat{1, 0, 0, 0}};
     for (std::size_t next = 0; next < group.size(); ++next)
         for (const Quat& g : generators) {
@@ -105,9 +120,11 @@ std::vector<Quat> icosahedral_rotations() {
             if (std::none_of(group.begin(), group.end(), [&](const Quat& r) { return same_rotation(q, r); }))
                 group.push_back(q);
         }
-    if (group.size() != 60) throw std::logic_error("icosahedral group: closure has the wrong order");
+    if (int(group.size()) != members) throw std::logic_error("cage_rotations: closure has the wrong order");
     return group;
 }
+
+std::vector<Quat> icosahedral_rotations() { return cage_rotations(60); }
 
 namespace {
 
@@ -139,7 +156,7 @@ void fill_capsomer(Capsomer& c, const Vec3& outward, const std::vector<Contact>&
     }
     for (const Contact& k : contacts) {
         std::vector<int> face;
-        for (const double d : depths)
+        for (const double d : {c.site_depths.outer, c.site_depths.inner})
             for (const double u : k.u) {
                 face.push_back(int(c.sites.size()));
                 c.sites.push_back(((c.face_distance - d) / c.face_distance) * (k.from + u * (k.to - k.from)));
@@ -171,12 +188,20 @@ double edge_spread(const std::vector<Quat>& group, const Vec3& d) {
     return r[4] / r[0] - 1;
 }
 
+void check_site_depths(const SiteDepths& d) {
+    if (!(d.outer >= 0 && d.outer < d.inner && d.inner <= 1.7))
+        throw std::invalid_argument("capsomer: site depths " + std::to_string(d.outer) + ", " +
+                                    std::to_string(d.inner) + " are not 0 <= outer < inner <= 1.7");
+}
+
 }  // namespace
 
-Capsomer pw_capsomer(double edge) {
+Capsomer pw_capsomer(double edge, SiteDepths depths) {
     if (!(edge > 0)) throw std::invalid_argument("pw_capsomer: edge must be > 0");
+    check_site_depths(depths);
     Capsomer c;
     c.edge = edge;
+    c.site_depths = depths;
     const double phi = 0.5 * (1 + std::sqrt(5.0)), s = 1.5 * edge;  // icosahedron edge 3a
     const Vec3 A = s * Vec3{0, 1, phi}, B = s * Vec3{phi, 0, 1}, C = s * Vec3{1, phi, 0};
     const Vec3 P = A + (1.0 / 3) * (B - A), O = (1.0 / 3) * (A + B + C), R = A + (2.0 / 3) * (C - A);
@@ -194,8 +219,9 @@ Capsomer pw_capsomer(double edge) {
     return c;
 }
 
-Capsomer ph_capsomer(double long_edge) {
+Capsomer ph_capsomer(double long_edge, SiteDepths depths) {
     if (!(long_edge > 0)) throw std::invalid_argument("ph_capsomer: long_edge must be > 0");
+    check_site_depths(depths);
     const std::vector<Quat> group = icosahedral_rotations();
     const double phi = 0.5 * (1 + std::sqrt(5.0));
     const Vec3 five = unit(Vec3{0, 1, phi}), three = unit(Vec3{1, 1, 1});
@@ -274,6 +300,7 @@ Capsomer ph_capsomer(double long_edge) {
     }
     if (c.outer_face.size() != 5) throw std::logic_error("ph_capsomer: the face does not reach the shell frame");
     c.edge = long_edge;
+    c.site_depths = depths;
     const std::vector<Vec3>& V = c.outer_face;
     // Both long edges meet at the 5-fold corner (5-fold contacts, measured from it as in PW);
     // the two edges at the 3-fold corner are the 3-fold contacts, measured from it; V1 V2 is

@@ -56,6 +56,15 @@ for bad in "$dir/none" "$dir/cs x" "$dir/cs 6 99"; do  # bad input: one line, st
   rc=0; err=$("$scripts/capsid_cages" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_cages $bad: status $rc, $err"; exit 1; }
 done
+# The PW capsomer's closed cages, apart from the engine: its log's numbers, which the engine's
+# closed_cage() is compared with in physics_capsomer (benchmarks/logs/capsid_polymorphs_2026-12-04.log).
+"$scripts/capsid_polymorphs" >"$dir/cs/polymorphs.txt"
+grep -q "^| 24 | -19.3189 | 0.2807 | 1.9499 | 2.6372 | 5 | 0.196 |$" "$dir/cs/polymorphs.txt" \
+  || { echo "FAIL: the 24-cage: $(cat "$dir/cs/polymorphs.txt")"; exit 1; }
+for bad in "1.3 1.2" "x 1" "0 1 2 3"; do  # bad input: one line, status 1
+  rc=0; err=$("$scripts/capsid_polymorphs" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_polymorphs $bad: status $rc, $err"; exit 1; }
+done
 # Table 1 beside ours, from a committed log: e = 0.15 averages its two seeds' rows (monomers
 # 0.370 and 0.447; 2-5 plus 6-50: 0.630 and 0.553).
 "$scripts/plot_capsid_table1" "$dir/cs/table1.png" "$scripts/../benchmarks/logs/capsid_table1_2026-12-03.log" >"$dir/cs/table1.txt"
