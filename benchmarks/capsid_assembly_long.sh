@@ -9,7 +9,8 @@
 #       continues it from its checkpoint; runs until STEPS (1e8) or SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
 #       CAPSOMERS (300), SOLVENT (implicit), SAMPLE (20000 steps), EVENTS (50 steps),
-#       CHECKPOINT (200000) override; SET="key=value ..." adds scene settings (e.g. the site
+#       CHECKPOINT (200000) and FRAMES (1000000: steps between trajectory frames, whose cluster
+#       ids scripts/capsid_cages fits) override; SET="key=value ..." adds scene settings (e.g. the site
 #       rows: SET="site_depth_outer=0").
 #   benchmarks/capsid_assembly_long.sh table RUN_DIR...      mass fractions by size group at
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
@@ -60,7 +61,7 @@ run)
   exec "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction=0.033 \
     --set solvent="${SOLVENT:-implicit}" --set start=monomers --set attraction="$2" --set seed="$3" \
     --set steps="${STEPS:-100000000}" --set sample_every="${SAMPLE:-20000}" --set events_every="${EVENTS:-50}" \
-    --set progress_interval=600 \
+    --set progress_interval=600 --set output.every="${FRAMES:-1000000}" \
     --checkpoint-every "${CHECKPOINT:-200000}" -o "$dir"
   ;;
 table)

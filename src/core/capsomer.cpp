@@ -249,13 +249,10 @@ Capsomer ph_capsomer(double long_edge, SiteDepths depths) {
         if (!moved) step *= 0.5;
     }
     if (best > 1e-9) throw std::logic_error("ph_capsomer: no snub dodecahedron vertex found");
-    // The other enantiomer (the shell's handedness is a choice; this one is the note's), then
-    // the five faces of the snub around v, in turn: their poles (reciprocal in the unit
-    // sphere) are the corners of the pentagonal hexecontahedron's face dual to v.
-    v = unit(v);
-    v.x = -v.x;
-    std::vector<Vec3> near;
-    {
+    // The five faces of the snub around a vertex v, in turn: their poles (reciprocal in the
+    // unit sphere) are the corners of the pentagonal hexecontahedron's face dual to v, counter-
+    // clockwise seen from outside.
+    auto poles_around = [&](const Vec3& v) {
         std::vector<std::pair<double, Vec3>> orbit;
         for (std::size_t g = 1; g < group.size(); ++g) {
             const Vec3 w = rotate(group[g], v);
@@ -263,40 +260,49 @@ Capsomer ph_capsomer(double long_edge, SiteDepths depths) {
         }
         std::sort(orbit.begin(), orbit.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         const Vec3 e1 = unit(orbit[0].second - dot(orbit[0].second, v) * v), e2 = cross(v, e1);
+        std::vector<Vec3> near;
         for (int k = 0; k < 5; ++k) near.push_back(orbit[std::size_t(k)].second);
         std::sort(near.begin(), near.end(), [&](const Vec3& a, const Vec3& b) {
             return std::atan2(dot(a - v, e2), dot(a - v, e1)) < std::atan2(dot(b - v, e2), dot(b - v, e1));
         });
-    }
-    std::vector<Vec3> pole;
-    for (std::size_t k = 0; k < 5; ++k) {
-        Vec3 m = unit(cross(near[k] - v, near[(k + 1) % 5] - v));
-        if (dot(m, v) < 0) m = -1.0 * m;
-        pole.push_back((1 / dot(m, v)) * m);
-    }
+        std::vector<Vec3> pole;
+        for (std::size_t k = 0; k < 5; ++k) {
+            Vec3 m = unit(cross(near[k] - v, near[(k + 1) % 5] - v));
+            if (dot(m, v) < 0) m = -1.0 * m;
+            pole.push_back((1 / dot(m, v)) * m);
+        }
+        return pole;
+    };
     // Turn the face so that its 5-fold corner lies on (0, 1, phi) and its 3-fold corner on
     // (1, 1, 1), the shell frame of icosahedral_rotations(); V0 the 5-fold corner, V3 the
-    // 3-fold one.
+    // 3-fold one. The shell's handedness is a choice: the note's enantiomer has the 3-fold
+    // corner three steps counter-clockwise from the 5-fold one. The search above finds either
+    // enantiomer (their vertices are equally good minima, so which one depends on rounding);
+    // the one it did not find is its mirror image.
     auto along = [](const Vec3& x, const Vec3& axis) { return norm(cross(unit(x), axis)) < 1e-9 && dot(x, axis) > 0; };
     Capsomer c;
     Vec3 normal{0, 0, 0};
-    for (const Quat& g : group) {
-        std::vector<Vec3> f;
-        for (const Vec3& p : pole) f.push_back(rotate(g, p));
-        int k5 = -1, k3 = -1;
-        for (int k = 0; k < 5; ++k) {
-            if (along(f[std::size_t(k)], five)) k5 = k;
-            if (along(f[std::size_t(k)], three)) k3 = k;
+    v = unit(v);
+    for (const Vec3& candidate : {v, Vec3{-v.x, v.y, v.z}}) {
+        const std::vector<Vec3> pole = poles_around(candidate);
+        for (const Quat& g : group) {
+            std::vector<Vec3> f;
+            for (const Vec3& p : pole) f.push_back(rotate(g, p));
+            int k5 = -1, k3 = -1;
+            for (int k = 0; k < 5; ++k) {
+                if (along(f[std::size_t(k)], five)) k5 = k;
+                if (along(f[std::size_t(k)], three)) k3 = k;
+            }
+            if (k5 < 0 || k3 < 0 || (k3 - k5 + 5) % 5 != 3) continue;
+            std::rotate(f.begin(), f.begin() + k5, f.end());
+            const double scale = long_edge / norm(f[1] - f[0]);
+            for (Vec3& x : f) x *= scale;
+            c.outer_face = f;
+            normal = rotate(g, candidate);  // the face lies in the plane x . v = 1 before scaling
+            c.face_distance = scale;
+            break;
         }
-        if (k5 < 0 || k3 < 0) continue;
-        std::rotate(f.begin(), f.begin() + k5, f.end());
-        if ((k3 - k5 + 5) % 5 != 3) std::reverse(f.begin() + 1, f.end());
-        const double scale = long_edge / norm(f[1] - f[0]);
-        for (Vec3& x : f) x *= scale;
-        c.outer_face = f;
-        normal = rotate(g, v);  // the face lies in the plane x . v = 1 before scaling
-        c.face_distance = scale;
-        break;
+        if (!c.outer_face.empty()) break;
     }
     if (c.outer_face.size() != 5) throw std::logic_error("ph_capsomer: the face does not reach the shell frame");
     c.edge = long_edge;
