@@ -637,9 +637,12 @@ struct Simulation::Engine {
         }
         backend_wrote(kVelocity);
         if (bodies()) {
+            // The step's Langevin pass sets the constituents' velocities again before anything
+            // reads them (the thermostat reads the free particles' alone).
             rigid.kick(target, body_arrays(kPosition | kVelocity | kForce | kSpecies | kOrientation |
                                            kAngularMomentum | kTorque),
-                       data(kPosition, store.position), data(kVelocity, store.velocity), kick);
+                       data(kPosition, store.position), data(kVelocity, store.velocity), kick,
+                       !body_langevin);
             bodies_wrote(kVelocity | kAngularMomentum);
             backend_wrote(kVelocity);
         }

@@ -132,8 +132,9 @@ void RigidBodies::sum_forces(const exec::Target& target, const Arrays& a, const 
     exec::for_each(target, bodies_.n_owned(), BodyForceAndTorque{a.state, a.constituents, x, f});
 }
 
-void RigidBodies::kick(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick) const {
-    exec::for_each(target, bodies_.n_owned(), BodyKick{a.state, a.frames, a.constituents, x, v, kick});
+void RigidBodies::kick(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick,
+                       bool place) const {
+    exec::for_each(target, bodies_.n_owned(), BodyKick{a.state, a.frames, a.constituents, x, v, kick, place});
 }
 
 void RigidBodies::langevin(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double decay_t,

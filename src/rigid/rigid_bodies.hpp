@@ -86,7 +86,9 @@ public:
     void kick_drift(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick,
                     double drift) const;
     void sum_forces(const exec::Target& target, const Arrays& a, const Vec3* x, const Vec3* f) const;
-    void kick(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick) const;
+    /// `place` false leaves the constituents' velocities to a pass that follows (Langevin).
+    void kick(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick,
+              bool place = true) const;
     /// One step of Langevin dynamics (BodyLangevin) for every owned body.
     void langevin(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double decay_t,
                   double decay_r, double temperature, std::uint64_t seed, std::uint64_t step) const;
