@@ -68,7 +68,8 @@ done
 /usr/bin/python3 - "$out" "$mode" "$cores" "$rounds" "${ranks[@]}" <<'PY'
 import json, statistics, sys
 out, mode, cores, rounds, ranks = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), [int(r) for r in sys.argv[5:]]
-parts = ["force", "neighbour", "migrate", "communicate", "halo_wait", "integrate", "collective_wait", "imbalance"]
+parts = ["force", "neighbour", "migrate", "communicate", "halo_wait", "integrate", "collective_wait",
+         "collective_wait_after_build", "imbalance"]
 rows = []
 for np_ in ranks:
     runs = [json.load(open(f"{out}/np{np_}_round{r}.json")) for r in range(1, rounds + 1)]
@@ -89,7 +90,8 @@ print(f"# median of {rounds} rounds; times in ms per step (slowest rank's, excep
       "slowest compute less the mean); neighbour includes migrate; halo_wait (blocked on ghost data) "
       "lies inside communicate, or inside force where the refresh overlaps; collective_wait (in the "
       "step's global reductions: the rebuild vote, the thermostat's sum) inside communicate and "
-      "integrate; messages and kB per rank per step")
+      "integrate, of it collective_wait_after_build (the thermostat's sum in steps that rebuilt the "
+      "list: per step of the run, not per build); messages and kB per rank per step")
 print("# ranks  grid    N         step_ms  efficiency  " + "  ".join(f"{p:>11s}" for p in parts)
       + "  msgs  kB/step  B/particle  note")
 for r in rows:

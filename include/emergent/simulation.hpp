@@ -160,6 +160,9 @@ struct PhaseTimes {
     /// In the step's global reductions (the rebuild vote, inside `communicate`; the
     /// thermostat's kinetic energy, inside `integrate`): mostly waiting for the slowest rank.
     double collective_wait = 0;
+    /// Of `collective_wait`: the thermostat's sum in steps that rebuilt the list, where the
+    /// ranks' list builds (the step's largest work) meet.
+    double collective_wait_after_build = 0;
 };
 
 /// A particle system decomposed over the ranks of a communicator.

@@ -100,6 +100,7 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     // In the step's global reductions (inside communicate and integrate): a rank waits there
     // for the slowest, step by step, which the run-long imbalance below averages away.
     field("seconds_collective_wait", number(decomp::max(comm, p.collective_wait)));
+    field("seconds_collective_wait_after_build", number(decomp::max(comm, p.collective_wait_after_build)));
     field("halo_overlap", sim.halo_overlap() ? "true" : "false");
     field("interior_fraction", number(decomp::sum(comm, sim.interior_fraction()) / sim.n_ranks()));
     // Load imbalance: how much longer the slowest rank computed (forces and integration) than

@@ -38,11 +38,17 @@ using Clock = std::chrono::steady_clock;
 /// Adds the seconds since construction to `slot` when it goes out of scope.
 class PhaseTimer {
 public:
-    explicit PhaseTimer(double& slot) : slot_(slot), start_(Clock::now()) {}
-    ~PhaseTimer() { slot_ += std::chrono::duration<double>(Clock::now() - start_).count(); }
+    /// Adds the time to `slot`, and to `*also` where given.
+    explicit PhaseTimer(double& slot, double* also = nullptr) : slot_(slot), also_(also), start_(Clock::now()) {}
+    ~PhaseTimer() {
+        const double t = std::chrono::duration<double>(Clock::now() - start_).count();
+        slot_ += t;
+        if (also_) *also_ += t;
+    }
 
 private:
     double& slot_;
+    double* also_;
     Clock::time_point start_;
 };
 }  // namespace
@@ -70,6 +76,7 @@ struct Simulation::Engine {
     unsigned particle_fields = kPosition;  ///< what the force terms read of owned particles
     long long n_global = 0, step = 0, rebuilds = 0;
     bool moved_since_build = true;  ///< a drift since the last list build
+    bool built_this_step = false;   ///< the list was rebuilt within the current step
     /// The largest squared displacement since the last build, taken in the last drift's pass
     /// (kick_drift), for the rebuild test that follows it.
     double drift_moved_sq = 0;
@@ -675,6 +682,7 @@ struct Simulation::Engine {
             if (rebalance()) needed = true;
         }
         if (needed) {
+            built_this_step = true;
             rebuild(true);
             return;
         }
@@ -732,6 +740,9 @@ struct Simulation::Engine {
         n_bodies = decomp::sum(comm, static_cast<long long>(rigid.n_owned()));
     }
 
+    /// Where this step rebuilt the list, the slot its first global sum's wait also goes to.
+    double* after_build_wait() { return built_this_step ? &times.collective_wait_after_build : nullptr; }
+
     void apply_thermostat() {
         if (!thermostat) return;
         PhaseTimer timer(times.integrate);
@@ -747,7 +758,7 @@ struct Simulation::Engine {
             double sums[5] = {local.mass, local.kinetic, local.momentum.x, local.momentum.y,
                               local.momentum.z};
             {
-                PhaseTimer summing(times.collective_wait);
+                PhaseTimer summing(times.collective_wait, after_build_wait());
                 MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, comm);
             }
             if (n_free < 2 || !(sums[0] > 0)) return;
@@ -766,7 +777,7 @@ struct Simulation::Engine {
         kick_kinetic_known = false;
         double kinetic;
         {
-            PhaseTimer summing(times.collective_wait);
+            PhaseTimer summing(times.collective_wait, after_build_wait());
             kinetic = decomp::sum(comm, local);
         }
         const double factor = thermostat->scale_factor(kinetic, dof(), step, settings.dt);
@@ -1199,6 +1210,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
 
 void Simulation::step(bool sample) {
     Engine& e = *engine_;
+    e.built_this_step = false;
     const double dt = e.settings.dt;
     // Rebalances by the step's index alone, so a continued run moves the planes where the
     // uninterrupted one did.

@@ -26,6 +26,15 @@ if s["seconds_halo_wait"] < 0:
 wait, inside = s["seconds_collective_wait"], s["seconds_communicate"] + s["seconds_integrate"]
 if not 0 < wait <= inside:
     sys.exit(f"FAIL: {d}: collective wait {wait} s, expected in (0, {inside}]")
+# Of it, the thermostat's sum in steps that rebuilt the list (the fluid has a thermostat and
+# rebuilds; the granular bed has none): a part, and more than nothing where both happen. Each
+# is the slowest rank's, possibly another rank, so the part is bounded by the whole's own
+# bound, not by it.
+after = s["seconds_collective_wait_after_build"]
+if not 0 <= after <= inside:
+    sys.exit(f"FAIL: {d}: collective wait after builds {after} s, expected in [0, {inside}]")
+if d.rstrip("/").split("/")[-1].startswith("fluid") and s["neighbour_rebuilds"] > 1 and not after > 0:
+    sys.exit(f"FAIL: {d}: no collective wait after {s['neighbour_rebuilds']} builds")
 PY
 }
 
