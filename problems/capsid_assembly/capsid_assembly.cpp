@@ -130,13 +130,7 @@ public:
         std::vector<double> masses{1.0, c_.real("mass_ratio") / double(design_.spheres.size())};
         masses.resize(kFirstSite + design_.sites.size(), 0.0);
         sim.set_species_masses(masses);
-        SiteAttraction a;
-        a.first_site = kFirstSite;
-        a.partner = design_.partner;
-        a.epsilon = c_.real("attraction");
-        a.range = c_.real("attraction_range");
-        a.harmonic_range = c_.real("harmonic_range");
-        sim.add_force(make_soft_spheres_and_sites(a));
+        sim.add_force(make_soft_spheres_and_sites(attraction()));
         std::vector<Vec3> positions = design_.spheres;
         positions.insert(positions.end(), design_.sites.begin(), design_.sites.end());
         std::vector<int> species(design_.spheres.size(), kSphere);
@@ -300,11 +294,7 @@ public:
             closed_mass += n;
         }
         if (cage_cost_.empty()) {  // the design's polymorphs at this e, once a run
-            SiteAttraction a;
-            a.partner = design_.partner;
-            a.epsilon = c_.real("attraction");
-            a.range = c_.real("attraction_range");
-            a.harmonic_range = c_.real("harmonic_range");
+            const SiteAttraction a = attraction();
             const double shell = closed_cage(design_, kShell, a, rule_.bond_range).energy;
             for (const int n : {24, 12}) cage_cost_.push_back(closed_cage(design_, n, a, rule_.bond_range).energy - shell);
         }
@@ -378,6 +368,17 @@ public:
     }
 
 private:
+    /// The site attraction of the run's settings between the design's partner sites.
+    SiteAttraction attraction() const {
+        SiteAttraction a;
+        a.first_site = kFirstSite;
+        a.partner = design_.partner;
+        a.epsilon = c_.real("attraction");
+        a.range = c_.real("attraction_range");
+        a.harmonic_range = c_.real("harmonic_range");
+        return a;
+    }
+
     /// Per capsomer, the design's lowest closed cage of 24 and of 12 above its shell (energy
     /// of the attraction and repulsion, closed_cage): what keeps assembly from ending in them.
     std::vector<double> cage_cost_;

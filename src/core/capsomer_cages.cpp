@@ -33,16 +33,12 @@ using Pose = std::array<double, 6>;
 class CageEnergy {
 public:
     CageEnergy(const Capsomer& d, int members, const SiteAttraction& s) : d_(d), group_(cage_rotations(members)) {
-        law_.first_site = kFirstSite;
-        law_.n_site_types = int(d.sites.size());
-        if (law_.n_site_types > force::SphereSiteLaw::kMaxSiteTypes)
+        if (d.sites.size() > std::size_t(force::SphereSiteLaw::kMaxSiteTypes))
             throw std::invalid_argument("closed_cage: too many site types");
-        for (int k = 0; k < law_.n_site_types; ++k) law_.partner[k] = d.partner[std::size_t(k)];
-        law_.e = s.epsilon;
-        law_.range_sq = s.range * s.range;
-        law_.inverse_range_sq = 1 / law_.range_sq;
-        law_.harmonic_sq = s.harmonic_range * s.harmonic_range;
-        law_.inverse_harmonic_4 = 1 / (law_.harmonic_sq * law_.harmonic_sq);
+        SiteAttraction own = s;  // species 0: the spheres; 1 + k: site type k
+        own.first_site = kFirstSite;
+        own.partner = d.partner;
+        law_ = force::sphere_site_law(own);
         for (const Vec3& x : d.spheres) centre_ += x;
         centre_ *= 1.0 / double(d.spheres.size());
         // Start: the shell's 3-fold direction onto the cage's, then about it so that the 5-fold

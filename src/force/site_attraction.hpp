@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "emergent/force_term.hpp"
 #include "emergent/vec3.hpp"
 
 namespace emergent::force {
@@ -56,6 +57,9 @@ struct SphereSiteLaw {
         return k == kNone ? Real(0) : force_over_r(k, dot(d, d), energy);
     }
 };
+
+/// The law of settings already checked (make_soft_spheres_and_sites checks them).
+SphereSiteLaw sphere_site_law(const SiteAttraction& s);
 
 /// Forces, and with Sample energy and virial, over a half list (host): each pair once, Newton's
 /// third law on both members; a pair with a ghost counts half its energy and virial.

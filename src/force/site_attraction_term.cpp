@@ -93,7 +93,12 @@ std::unique_ptr<ForceTerm> make_soft_spheres_and_sites(const SiteAttraction& s) 
                 << n << " types";
     }
     if (!msg.str().empty()) throw InputError("spheres-and-sites: " + msg.str());
-    force::SphereSiteLaw law;
+    return std::make_unique<SpheresAndSitesTerm>(s, force::sphere_site_law(s));
+}
+
+force::SphereSiteLaw force::sphere_site_law(const SiteAttraction& s) {
+    const int n = static_cast<int>(s.partner.size());
+    SphereSiteLaw law;
     law.first_site = s.first_site;
     law.n_site_types = n;
     for (int k = 0; k < n; ++k) law.partner[k] = s.partner[std::size_t(k)];
@@ -102,7 +107,7 @@ std::unique_ptr<ForceTerm> make_soft_spheres_and_sites(const SiteAttraction& s) 
     law.inverse_range_sq = 1 / law.range_sq;
     law.harmonic_sq = s.harmonic_range * s.harmonic_range;
     law.inverse_harmonic_4 = 1 / (law.harmonic_sq * law.harmonic_sq);
-    return std::make_unique<SpheresAndSitesTerm>(s, law);
+    return law;
 }
 
 }  // namespace emergent
