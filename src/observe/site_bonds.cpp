@@ -109,28 +109,45 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
         return int(std::lower_bound(census.bodies.begin(), census.bodies.end(), id) - census.bodies.begin());
     };
 
-    // Sites binned by (cell, type) in cells at least bond_range wide.
+    // Sites binned by type and cell, in cells at least bond_range wide and, along each axis, no
+    // more than the cube root of the sites per type: a type has about one site per body, so a
+    // site meets about one of its partner type in each of the 27 cells it looks in, and the
+    // table of cells stays the size of the sites whatever the box.
+    std::size_t per_type = 1;
+    {
+        std::vector<std::size_t> count(std::size_t(n_types), 0);
+        for (const SiteRecord& s : sites) {
+            if (s.type < 0 || s.type >= n_types) throw InputError("site bonds: site type " + std::to_string(s.type) + " unknown");
+            per_type = std::max(per_type, ++count[std::size_t(s.type)]);
+        }
+    }
+    const int side_cap = std::max(1, int(std::ceil(std::cbrt(double(per_type)))));
     const Vec3 length = box.hi - box.lo;
     int n_cells[3];
     for (int d = 0; d < 3; ++d)
-        n_cells[d] = std::max(1, std::min(1024, int(std::floor(length[d] / rule.bond_range))));
+        n_cells[d] = std::max(1, std::min(side_cap, int(std::floor(length[d] / rule.bond_range))));
+    const std::int64_t cells_per_type = std::int64_t(n_cells[0]) * n_cells[1] * n_cells[2];
     auto cell_of = [&](const Vec3& x, int d) {
         const int c = int(std::floor((x[d] - box.lo[d]) / length[d] * n_cells[d]));
         if (box.periodic[d]) return ((c % n_cells[d]) + n_cells[d]) % n_cells[d];
         return std::clamp(c, 0, n_cells[d] - 1);
     };
     auto key = [&](int cx, int cy, int cz, int type) {
-        return ((std::int64_t(cx) * n_cells[1] + cy) * n_cells[2] + cz) * n_types + type;
+        return std::int64_t(type) * cells_per_type + (std::int64_t(cx) * n_cells[1] + cy) * n_cells[2] + cz;
     };
-    // (key, site) sorted by key: a cell's sites of one type are one contiguous run.
-    std::vector<std::pair<std::int64_t, std::uint32_t>> bins(sites.size());
+    // Counting sort by key: first[k] .. first[k + 1] are the sites of one type in one cell, in
+    // ascending index.
+    std::vector<std::uint32_t> first(std::size_t(cells_per_type * n_types + 1), 0), binned(sites.size());
+    std::vector<std::int64_t> key_of(sites.size());
     for (std::size_t s = 0; s < sites.size(); ++s) {
-        if (sites[s].type < 0 || sites[s].type >= n_types)
-            throw InputError("site bonds: site type " + std::to_string(sites[s].type) + " unknown");
-        bins[s] = {key(cell_of(sites[s].x, 0), cell_of(sites[s].x, 1), cell_of(sites[s].x, 2), sites[s].type),
-                   std::uint32_t(s)};
+        key_of[s] = key(cell_of(sites[s].x, 0), cell_of(sites[s].x, 1), cell_of(sites[s].x, 2), sites[s].type);
+        ++first[std::size_t(key_of[s]) + 1];
     }
-    std::sort(bins.begin(), bins.end());
+    std::partial_sum(first.begin(), first.end(), first.begin());
+    {
+        std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
+        for (std::size_t s = 0; s < sites.size(); ++s) binned[next[std::size_t(key_of[s])]++] = std::uint32_t(s);
+    }
     auto separation = [&](Vec3 d) {
         for (int k = 0; k < 3; ++k)
             if (box.periodic[k]) {
@@ -146,6 +163,7 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
         const int face = face_of[std::size_t(s.type)];
         if (face < 0) continue;
         const int want = rule.partner[std::size_t(s.type)];
+        if (want < 0 || want >= n_types) continue;  // a face site without a partner type bonds to nothing
         const int i = index_of(s.body);
         const int c[3] = {cell_of(s.x, 0), cell_of(s.x, 1), cell_of(s.x, 2)};
         std::array<std::int64_t, 27> near;  // distinct neighbouring cells (few cells: images repeat)
@@ -165,9 +183,8 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
         n_near = std::size_t(std::unique(near.begin(), near.begin() + std::ptrdiff_t(n_near)) - near.begin());
         for (std::size_t n = 0; n < n_near; ++n) {
             const std::int64_t k = near[n];
-            auto bin = std::lower_bound(bins.begin(), bins.end(), std::make_pair(k, std::uint32_t(0)));
-            for (; bin != bins.end() && bin->first == k; ++bin) {
-                const std::uint32_t o = bin->second;
+            for (std::uint32_t b = first[std::size_t(k)]; b < first[std::size_t(k) + 1]; ++b) {
+                const std::uint32_t o = binned[b];
                 if (sites[o].body == s.body) continue;
                 const Vec3 d = separation(s.x - sites[o].x);
                 if (dot(d, d) >= range_sq) continue;
