@@ -3,13 +3,15 @@
 # appended to LOG. The server picks a free display itself and says which once it accepts
 # connections (-displayfd), so renders started together never share or miss one (xvfb-run -a
 # picks the number before its server starts, and once all three tries of a render failed with
-# "bad X server connection").
+# "bad X server connection"). -noreset: by default the server resets when its last client
+# leaves, and a client connecting meanwhile is cut off; pvbatch closes one connection before it
+# opens the next, so on a loaded machine 4 in 6 renders failed with "bad X server connection".
 headless() {
   local width=$1 height=$2 log=$3
   shift 3
   local dir pid display rc=0
   dir=$(mktemp -d)
-  Xvfb -displayfd 1 -screen 0 "${width}x${height}x24" -nolisten tcp >"$dir/display" 2>>"$log" &
+  Xvfb -displayfd 1 -screen 0 "${width}x${height}x24" -nolisten tcp -noreset >"$dir/display" 2>>"$log" &
   pid=$!
   for _ in $(seq 300); do  # up to 30 s for the server to start
     [ -s "$dir/display" ] && break
