@@ -7,12 +7,18 @@
 # usage: benchmarks/build_ab.sh RANKS SETTLE TIMED REPEATS EXE_A EXE_B SCENE [--set key=value]...
 #        A_SETS / B_SETS ("key=value ..."): settings of A's or B's timed runs only (adjustable
 #        ones), so one build can be set against itself (e.g. B_SETS=neighbour_list=full).
+#        START=<checkpoint.h5>: time from that state instead of settling the scene (e.g. a long
+#        run's clusters); SETTLE is then the checkpoint's step.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ranks=$1 settle=$2 timed_steps=$3 repeats=$4 exe_a=$5 exe_b=$6 scene=$7
 shift 7
 . benchmarks/common.sh
-settle_checkpoint "$exe_a" "$ranks" "$settle" "$scene" "$@"
+if [ -n "${START:-}" ]; then
+  mkdir -p "$work/settle" && cp "$START" "$work/settle/checkpoint.h5"
+else
+  settle_checkpoint "$exe_a" "$ranks" "$settle" "$scene" "$@"
+fi
 rate() {
   local sets=() kv
   for kv in $([ "$2" = a ] && echo "${A_SETS:-}" || echo "${B_SETS:-}"); do sets+=(--set "$kv"); done

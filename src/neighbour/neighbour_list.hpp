@@ -81,6 +81,7 @@ public:
 private:
     void build_general(const ParticleStore& store, const CellList& cells, bool full);
     void build_general_half(const ParticleStore& store, const CellList& cells);
+    void build_half_by_species(const ParticleStore& store, const CellList& cells);
     /// The squared ranges by species pair for the single-precision search (-1: never listed).
     std::vector<float> binned_pair_limits(const CellList& cells) const;
     /// How far a search from each species reaches (its longest range; the grid's when some
@@ -101,6 +102,10 @@ private:
     std::vector<std::uint32_t> first_ghost_;  ///< per cell: the slot of its first ghost
     std::vector<int> slot_species_;           ///< per slot, during the general build
     std::vector<std::int64_t> slot_body_;     ///< per slot, during the general build
+    // The search by species (build_half_by_species): the cells' slots sorted by (species, cell),
+    // the first of each (species, cell), and per sorted slot its position, particle and key.
+    std::vector<std::uint32_t> by_species_first_, sorted_member_, sorted_key_;
+    std::vector<BinnedPoint> sorted_x_;
     std::vector<Vec3> built_at_;
 };
 

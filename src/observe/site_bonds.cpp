@@ -10,7 +10,6 @@
 #include <numeric>
 #include <set>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "emergent/error.hpp"
 #include "emergent/simulation.hpp"
@@ -94,12 +93,9 @@ void ClusterEvents::tally(const BondCensus& before, const BondCensus& after) {
 BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondRule& rule,
                            const Box& box) {
     const int n_types = int(rule.partner.size());
-    std::vector<int> face_of(std::size_t(n_types), -1);
-    for (std::size_t f = 0; f < rule.faces.size(); ++f)
-        for (const int t : rule.faces[f]) {
+    for (const std::vector<int>& face : rule.faces)
+        for (const int t : face)
             if (t < 0 || t >= n_types) throw InputError("site bonds: face site type " + std::to_string(t) + " unknown");
-            face_of[std::size_t(t)] = int(f);
-        }
     BondCensus census;
     for (const SiteRecord& s : sites) census.bodies.push_back(s.body);
     std::sort(census.bodies.begin(), census.bodies.end());
@@ -108,20 +104,31 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
     auto index_of = [&](std::int64_t id) {
         return int(std::lower_bound(census.bodies.begin(), census.bodies.end(), id) - census.bodies.begin());
     };
+    // site_of[body index * n_types + type]: the body's site of that type (a body has one of each
+    // type it carries), -1 if none.
+    std::vector<int> site_of(n_bodies * std::size_t(n_types), -1);
+    std::vector<int> body_of(sites.size());
+    for (std::size_t s = 0; s < sites.size(); ++s) {
+        if (sites[s].type < 0 || sites[s].type >= n_types)
+            throw InputError("site bonds: site type " + std::to_string(sites[s].type) + " unknown");
+        body_of[s] = index_of(sites[s].body);
+        int& slot = site_of[std::size_t(body_of[s]) * std::size_t(n_types) + std::size_t(sites[s].type)];
+        if (slot >= 0)
+            throw InputError("site bonds: body " + std::to_string(sites[s].body) + " has two sites of type " +
+                             std::to_string(sites[s].type));
+        slot = int(s);
+    }
 
     // Sites binned by type and cell, in cells at least bond_range wide and, along each axis, no
-    // more than the cube root of the sites per type: a type has about one site per body, so a
-    // site meets about one of its partner type in each of the 27 cells it looks in, and the
-    // table of cells stays the size of the sites whatever the box.
+    // more than twice the cube root of the sites per type: a type has about one site per body,
+    // so a search meets about one site of the type it wants in its 27 cells, and the table of
+    // cells stays within 8 entries per site whatever the box.
     std::size_t per_type = 1;
     {
         std::vector<std::size_t> count(std::size_t(n_types), 0);
-        for (const SiteRecord& s : sites) {
-            if (s.type < 0 || s.type >= n_types) throw InputError("site bonds: site type " + std::to_string(s.type) + " unknown");
-            per_type = std::max(per_type, ++count[std::size_t(s.type)]);
-        }
+        for (const SiteRecord& s : sites) per_type = std::max(per_type, ++count[std::size_t(s.type)]);
     }
-    const int side_cap = std::max(1, int(std::ceil(std::cbrt(double(per_type)))));
+    const int side_cap = std::max(1, int(std::ceil(2 * std::cbrt(double(per_type)))));
     const Vec3 length = box.hi - box.lo;
     int n_cells[3];
     for (int d = 0; d < 3; ++d)
@@ -135,8 +142,7 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
     auto key = [&](int cx, int cy, int cz, int type) {
         return std::int64_t(type) * cells_per_type + (std::int64_t(cx) * n_cells[1] + cy) * n_cells[2] + cz;
     };
-    // Counting sort by key: first[k] .. first[k + 1] are the sites of one type in one cell, in
-    // ascending index.
+    // Counting sort by key: first[k] .. first[k + 1] are the sites of one type in one cell.
     std::vector<std::uint32_t> first(std::size_t(cells_per_type * n_types + 1), 0), binned(sites.size());
     std::vector<std::int64_t> key_of(sites.size());
     for (std::size_t s = 0; s < sites.size(); ++s) {
@@ -155,54 +161,53 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
             }
         return d;
     };
-
-    // matched[(i, face)] : partner bodies j with the number of i's face sites near j's partners.
-    std::unordered_map<std::int64_t, std::vector<std::pair<int, int>>> matched;
     const double range_sq = rule.bond_range * rule.bond_range;
-    for (const SiteRecord& s : sites) {
-        const int face = face_of[std::size_t(s.type)];
-        if (face < 0) continue;
-        const int want = rule.partner[std::size_t(s.type)];
-        if (want < 0 || want >= n_types) continue;  // a face site without a partner type bonds to nothing
-        const int i = index_of(s.body);
-        const int c[3] = {cell_of(s.x, 0), cell_of(s.x, 1), cell_of(s.x, 2)};
-        std::array<std::int64_t, 27> near;  // distinct neighbouring cells (few cells: images repeat)
-        std::size_t n_near = 0;
-        for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dz = -1; dz <= 1; ++dz) {
-                    int q[3] = {c[0] + dx, c[1] + dy, c[2] + dz};
-                    bool inside = true;
-                    for (int d = 0; d < 3; ++d) {
-                        if (box.periodic[d]) q[d] = ((q[d] % n_cells[d]) + n_cells[d]) % n_cells[d];
-                        else inside = inside && q[d] >= 0 && q[d] < n_cells[d];
-                    }
-                    if (inside) near[n_near++] = key(q[0], q[1], q[2], want);
-                }
-        std::sort(near.begin(), near.begin() + std::ptrdiff_t(n_near));
-        n_near = std::size_t(std::unique(near.begin(), near.begin() + std::ptrdiff_t(n_near)) - near.begin());
-        for (std::size_t n = 0; n < n_near; ++n) {
-            const std::int64_t k = near[n];
-            for (std::uint32_t b = first[std::size_t(k)]; b < first[std::size_t(k) + 1]; ++b) {
-                const std::uint32_t o = binned[b];
-                if (sites[o].body == s.body) continue;
-                const Vec3 d = separation(s.x - sites[o].x);
-                if (dot(d, d) >= range_sq) continue;
-                auto& list = matched[std::int64_t(i) * std::int64_t(rule.faces.size()) + face];
-                const int j = index_of(sites[o].body);
-                auto it = std::find_if(list.begin(), list.end(), [&](const auto& p) { return p.first == j; });
-                if (it == list.end()) list.push_back({j, 1});
-                else ++it->second;
-            }
-        }
-    }
+    auto close = [&](int a, int b) {
+        const Vec3 d = separation(sites[std::size_t(a)].x - sites[std::size_t(b)].x);
+        return dot(d, d) < range_sq;
+    };
+
+    // For each body's face: the partners of its first site nearby, and of those the bodies whose
+    // partner sites are near every site of the face.
     std::set<std::pair<int, int>> bonds;
-    for (const auto& [k, list] : matched) {
-        const int i = int(k / std::int64_t(rule.faces.size()));
-        const std::size_t face = std::size_t(k % std::int64_t(rule.faces.size()));
-        for (const auto& [j, count] : list)
-            if (count == int(rule.faces[face].size())) bonds.insert({std::min(i, j), std::max(i, j)});
-    }
+    for (std::size_t i = 0; i < n_bodies; ++i)
+        for (const std::vector<int>& face : rule.faces) {
+            if (face.empty()) continue;
+            const int lead = site_of[i * std::size_t(n_types) + std::size_t(face[0])];
+            const int want = rule.partner[std::size_t(face[0])];
+            if (lead < 0 || want < 0 || want >= n_types) continue;
+            const Vec3& x = sites[std::size_t(lead)].x;
+            const int c[3] = {cell_of(x, 0), cell_of(x, 1), cell_of(x, 2)};
+            std::array<std::int64_t, 27> near;  // distinct neighbouring cells (few cells: images repeat)
+            std::size_t n_near = 0;
+            for (int dx = -1; dx <= 1; ++dx)
+                for (int dy = -1; dy <= 1; ++dy)
+                    for (int dz = -1; dz <= 1; ++dz) {
+                        int q[3] = {c[0] + dx, c[1] + dy, c[2] + dz};
+                        bool inside = true;
+                        for (int d = 0; d < 3; ++d) {
+                            if (box.periodic[d]) q[d] = ((q[d] % n_cells[d]) + n_cells[d]) % n_cells[d];
+                            else inside = inside && q[d] >= 0 && q[d] < n_cells[d];
+                        }
+                        if (inside) near[n_near++] = key(q[0], q[1], q[2], want);
+                    }
+            std::sort(near.begin(), near.begin() + std::ptrdiff_t(n_near));
+            n_near = std::size_t(std::unique(near.begin(), near.begin() + std::ptrdiff_t(n_near)) - near.begin());
+            for (std::size_t n = 0; n < n_near; ++n)
+                for (std::uint32_t b = first[std::size_t(near[n])]; b < first[std::size_t(near[n]) + 1]; ++b) {
+                    const int o = int(binned[b]);
+                    const std::size_t j = std::size_t(body_of[std::size_t(o)]);
+                    if (j == i || !close(lead, o)) continue;
+                    bool bonded = true;
+                    for (std::size_t k = 1; k < face.size() && bonded; ++k) {
+                        const int mine = site_of[i * std::size_t(n_types) + std::size_t(face[k])];
+                        const int p = rule.partner[std::size_t(face[k])];
+                        const int theirs = p < 0 || p >= n_types ? -1 : site_of[j * std::size_t(n_types) + std::size_t(p)];
+                        bonded = mine >= 0 && theirs >= 0 && close(mine, theirs);
+                    }
+                    if (bonded) bonds.insert({int(std::min(i, j)), int(std::max(i, j))});
+                }
+        }
     census.bonds.assign(bonds.begin(), bonds.end());
     census.degree.assign(n_bodies, 0);
     std::vector<int> parent(n_bodies);

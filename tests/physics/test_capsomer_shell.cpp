@@ -249,6 +249,55 @@ TEST(Capsomer, ShellAcrossThePeriodicBoundary) {
     EXPECT_EQ(wrapped.complete_clusters(60, 5), 1);
 }
 
+// The census against the rule applied by brute force (every face of every body against every
+// other body, nearest images): three shells, two straddling the periodic boundary, each
+// capsomer shaken by its own small rigid motion so that some bonds hold and some break.
+TEST(Capsomer, BondCensusAgreesWithBruteForceOnShakenShells) {
+    const Capsomer c = pw_capsomer();
+    const SiteBondRule rule = bond_rule(c);
+    Box box = big_box();
+    std::vector<Pose> poses;
+    for (const Vec3& at : {Vec3{20, 20, 20}, Vec3{0.5, 39.7, 0.2}, Vec3{38, 9, 21}})
+        for (const Pose& p : shell({Quat{1, 0, 0, 0}, at})) poses.push_back(p);
+    for (std::size_t b = 0; b < poses.size(); ++b) {
+        const Vec3 turn{gaussian(11, b, 0), gaussian(11, b, 1), gaussian(11, b, 2)};
+        const Quat q = axis_angle(turn, 0.03 * norm(turn));  // ~0.05 rad: sites ~4 out move ~0.2
+        const Vec3 centre = rotate(poses[b].q, Vec3{0, 0, 0}) + poses[b].shift;
+        poses[b].q = normalized(q * poses[b].q);
+        poses[b].shift = rotate(q, poses[b].shift - centre) + centre +
+                         0.08 * Vec3{gaussian(12, b, 0), gaussian(12, b, 1), gaussian(12, b, 2)};
+    }
+    std::vector<SiteRecord> s = sites_at(c, poses);
+    for (SiteRecord& r : s)
+        for (int d = 0; d < 3; ++d) r.x[d] -= 40 * std::floor(r.x[d] / 40);
+    // Brute force: body i's face f is bonded to body j when each of its sites lies within the
+    // bond range of j's site of the partner type.
+    std::map<std::pair<std::int64_t, int>, Vec3> where;
+    for (const SiteRecord& r : s) where[{r.body, r.type}] = r.x;
+    auto apart = [](Vec3 d) {
+        for (int k = 0; k < 3; ++k) d[k] -= 40 * std::round(d[k] / 40);
+        return norm(d);
+    };
+    std::set<std::pair<int, int>> expected;
+    const int n = int(poses.size());
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            if (i == j) continue;
+            for (const std::vector<int>& face : c.faces) {
+                bool all = true;
+                for (const int t : face)
+                    all = all && apart(where.at({i, t}) - where.at({j, c.partner[std::size_t(t)]})) < rule.bond_range;
+                if (all) expected.insert({std::min(i, j), std::max(i, j)});
+            }
+        }
+    const BondCensus census = find_site_bonds(s, rule, box);
+    const std::set<std::pair<int, int>> found(census.bonds.begin(), census.bonds.end());
+    EXPECT_EQ(found, expected);
+    // The shaking must leave the test something to tell apart: some bonds broken, most kept.
+    EXPECT_LT(expected.size(), 450u);
+    EXPECT_GT(expected.size(), 225u);
+}
+
 TEST(Capsomer, AttractionEnergyOfShellAndDimers) {
     const Capsomer c = pw_capsomer();
     // The shell at the box's centre, where the domains of 2 ranks meet, turned and moved by a
