@@ -101,7 +101,7 @@ private:
     std::vector<Place> place_;  ///< per owned particle, during build()
     std::vector<std::uint32_t> first_ghost_;  ///< per cell: the slot of its first ghost
     std::vector<int> slot_species_;           ///< per slot, during the general build
-    std::vector<std::int64_t> slot_body_;     ///< per slot, during the general build
+    std::vector<std::int64_t> slot_body_;     ///< per slot (by species: per sorted slot), during the build
     // The search by species (build_half_by_species): the cells' slots sorted by (species, cell),
     // the first of each (species, cell), and per sorted slot its position, particle and key.
     std::vector<std::uint32_t> by_species_first_, sorted_member_, sorted_key_;
