@@ -15,6 +15,7 @@
 #include <utility>
 
 #include "emergent/capsomer.hpp"
+#include "emergent/error.hpp"
 #include "emergent/force_term.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
@@ -296,6 +297,20 @@ TEST(Capsomer, BondCensusAgreesWithBruteForceOnShakenShells) {
     // The shaking must leave the test something to tell apart: some bonds broken, most kept.
     EXPECT_LT(expected.size(), 450u);
     EXPECT_GT(expected.size(), 225u);
+}
+
+// A body with two sites of one type has no partner site to pair each of its face's sites with:
+// refused, naming the body and the type.
+TEST(Capsomer, BondCensusRefusesTwoSitesOfOneTypeOnABody) {
+    const Capsomer c = pw_capsomer();
+    std::vector<SiteRecord> s = sites_at(c, {{Quat{1, 0, 0, 0}, {20, 20, 20}}});
+    s.push_back(s.front());
+    try {
+        find_site_bonds(s, bond_rule(c), big_box());
+        FAIL() << "two sites of one type on a body were accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("body 0 has two sites of type 0"), std::string::npos) << e.what();
+    }
 }
 
 TEST(Capsomer, AttractionEnergyOfShellAndDimers) {
