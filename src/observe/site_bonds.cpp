@@ -108,6 +108,8 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
     // type it carries), -1 if none.
     std::vector<int> site_of(n_bodies * std::size_t(n_types), -1);
     std::vector<int> body_of(sites.size());
+    std::vector<std::size_t> count(std::size_t(n_types), 0);
+    std::size_t per_type = 1;  // the most sites of one type
     for (std::size_t s = 0; s < sites.size(); ++s) {
         if (sites[s].type < 0 || sites[s].type >= n_types)
             throw InputError("site bonds: site type " + std::to_string(sites[s].type) + " unknown");
@@ -117,17 +119,13 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
             throw InputError("site bonds: body " + std::to_string(sites[s].body) + " has two sites of type " +
                              std::to_string(sites[s].type));
         slot = int(s);
+        per_type = std::max(per_type, ++count[std::size_t(sites[s].type)]);
     }
 
     // Sites binned by type and cell, in cells at least bond_range wide and, along each axis, no
     // more than twice the cube root of the sites per type: a type has about one site per body,
     // so a search meets about one site of the type it wants in its 27 cells, and the table of
     // cells stays within 8 entries per site whatever the box.
-    std::size_t per_type = 1;
-    {
-        std::vector<std::size_t> count(std::size_t(n_types), 0);
-        for (const SiteRecord& s : sites) per_type = std::max(per_type, ++count[std::size_t(s.type)]);
-    }
     const int side_cap = std::max(1, int(std::ceil(2 * std::cbrt(double(per_type)))));
     const Vec3 length = box.hi - box.lo;
     int n_cells[3];
