@@ -11,7 +11,8 @@
 # usage: benchmarks/capsid_growth_steps.sh [OUT] [SIZES...]   (defaults /tmp/capsid_growth;
 #        sizes 1 2 3 4 6 8 12 16 20 25 30 35 40 45 50 55); E (0.09), SEEDS ("41 42"), STEPS
 #        (100000), SAMPLE (25 steps), CAPSOMERS (120), MONOMER_CAPSOMERS (300), SOLVENT
-#        (implicit) override. Runs already complete in OUT are kept (one OUT per setting); the
+#        (implicit), PARTICLE_FRACTION (0.022), DT (the scene's 0.005) and SET ("key=value ...": more scene settings,
+#        e.g. the site rows "site_depth_outer=0") override. Runs already complete in OUT are kept (one OUT per setting); the
 #        table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,8 +27,12 @@ sample=${SAMPLE:-25}
 capsomers=${CAPSOMERS:-120}
 monomer_capsomers=${MONOMER_CAPSOMERS:-300}
 solvent=${SOLVENT:-implicit}
+fraction=${PARTICLE_FRACTION:-0.022}
+extra=()
+[ -n "${DT:-}" ] && extra+=(--set dt="$DT")
+for kv in ${SET:-}; do extra+=(--set "$kv"); done
 mkdir -p "$out"
-echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction 0.022, solvent $solvent; $(run_stamp)"
+echo "# capsid_growth_steps.sh: e $e; sizes $sizes; seeds $seeds; $steps steps, sample every $sample; $capsomers capsomers ($monomer_capsomers from monomers), particle_fraction $fraction, solvent $solvent${SET:+, $SET}${DT:+, dt $DT}; $(run_stamp)"
 commit_line
 for n in $sizes; do
   for seed in $seeds; do
@@ -35,7 +40,7 @@ for n in $sizes; do
     [ -f "$file" ] && continue
     if [ "$n" = 1 ]; then start=(--set start=monomers --set capsomers="$monomer_capsomers")
     else start=(--set start=cluster --set cluster_size="$n" --set capsomers="$capsomers"); fi
-    "$exe" run capsid-assembly "${start[@]}" --set solvent="$solvent" --set attraction="$e" \
+    "$exe" run capsid-assembly "${extra[@]}" "${start[@]}" --set particle_fraction="$fraction" --set solvent="$solvent" --set attraction="$e" \
       --set seed="$seed" --set steps="$steps" --set sample_every="$sample" \
       --set progress_interval=0 --summary-json "$file.tmp" >/dev/null
     mv "$file.tmp" "$file"
@@ -55,11 +60,13 @@ grew = {"monomers": zero(), "seeded": zero(), "all": zero()}
 shrank = {"monomers": zero(), "seeded": zero(), "all": zero()}
 seen = {"monomers": zero(), "seeded": zero(), "all": zero()}
 wall = 0.0
+dts = set()
 for n in sizes:
     for seed in seeds:
         s = json.load(open(f"{out}/n{n}_seed{seed}.json"))
         m = s["scene_measures"]
         wall += s["wall_seconds"]
+        dts.add(s["dt"])
         for origin in ("monomers" if n == "1" else "seeded", "all"):
             for tally, suffix in (("fine", ""), ("coarse", "_coarse")):
                 for k in range(60):
@@ -67,7 +74,9 @@ for n in sizes:
                     shrank[origin][tally][k] += m["loss_events" + suffix][k]
                     seen[origin][tally][k] += m["clusters_seen" + suffix][k]
 
-tau = 0.005 * sample
+if len(dts) != 1:
+    sys.exit(f"capsid_growth_steps: runs in {out} at different time steps {sorted(dts)}: one OUT per setting")
+tau = dts.pop() * sample
 
 
 def row(label, lo, hi, origin="all"):
