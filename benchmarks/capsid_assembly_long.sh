@@ -8,10 +8,13 @@
 #   benchmarks/capsid_assembly_long.sh run OUT E SEED        starts OUT/e<E>_seed<SEED>, or
 #       continues it from its checkpoint; runs until STEPS (1e8) or SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
-#       CAPSOMERS (300), SOLVENT (implicit), SAMPLE (20000 steps), EVENTS (50 steps),
-#       CHECKPOINT (200000) and FRAMES (1000000: steps between trajectory frames, whose cluster
-#       ids scripts/capsid_cages fits) override; SET="key=value ..." adds scene settings (e.g. the site
-#       rows: SET="site_depth_outer=0").
+#       CAPSOMERS (300), SOLVENT (implicit), DT (the scene's 0.005; the implicit solvent holds
+#       to 0.02, benchmarks/RESULTS.md "A longer step in the implicit solvent"), SAMPLE (100 tau),
+#       EVENTS (0.25 tau), CHECKPOINT (1000 tau) and FRAMES (5000 tau: between trajectory frames,
+#       whose cluster ids scripts/capsid_cages fits) override, the last four in steps; SET="key=value
+#       ..." adds scene settings (e.g. the site rows: SET="site_depth_outer=0"). DT on a
+#       continuation changes the step from there on (and the intervals with it: the tallies
+#       start afresh).
 #   benchmarks/capsid_assembly_long.sh table RUN_DIR...      mass fractions by size group at
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
 #       complete shell, the last sample; and P_n = g / (g + l) by size from the tallies at the
@@ -30,9 +33,9 @@ import os, sys
 sys.path.insert(0, "scripts")
 import h5py, numpy as np
 from emergentpy import Run, wilson_interval as wilson
-def step_table(tally, interval):
+def step_table(tally, interval, dt):
     """P_n = g / (g + l) by size group, from tallies (name -> 60 counts) at interval and twice it."""
-    tau = 0.005 * interval
+    tau = dt * interval
     print(f"| size n | g ({tau:g} tau) | l | P | g ({2 * tau:g} tau) | l | P |")
     print("|---|---|---|---|---|---|---|")
     for lo, hi in ((2, 2), (3, 3), (4, 10), (11, 20), (21, 30), (31, 40), (41, 50), (51, 59), (4, 50)):
@@ -53,16 +56,19 @@ case "$what" in
 run)
   [ $# -eq 3 ] || { echo "usage: $0 run OUT E SEED" >&2; exit 2; }
   dir="$1/e$2_seed$3"
+  dt=${DT:-0.005}
+  steps_of() { /usr/bin/python3 -c "print(max(1, round($1 / $dt)))"; }
+  intervals=(--set sample_every="${SAMPLE:-$(steps_of 100)}" --set events_every="${EVENTS:-$(steps_of 0.25)}"
+             --set output.every="${FRAMES:-$(steps_of 5000)}" --set checkpoint_every="${CHECKPOINT:-$(steps_of 1000)}")
   if [ -f "$dir/checkpoint.h5" ]; then
-    exec "$exe" run --restart "$dir/checkpoint.h5" -o "$dir"
+    [ -n "${DT:-}" ] || intervals=()
+    exec "$exe" run --restart "$dir/checkpoint.h5" ${DT:+--set dt="$DT"} "${intervals[@]}" -o "$dir"
   fi
   extra=()
   for kv in ${SET:-}; do extra+=(--set "$kv"); done
   exec "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction=0.033 \
     --set solvent="${SOLVENT:-implicit}" --set start=monomers --set attraction="$2" --set seed="$3" \
-    --set steps="${STEPS:-100000000}" --set sample_every="${SAMPLE:-20000}" --set events_every="${EVENTS:-50}" \
-    --set progress_interval=600 --set output.every="${FRAMES:-1000000}" \
-    --checkpoint-every "${CHECKPOINT:-200000}" -o "$dir"
+    --set dt="$dt" --set steps="${STEPS:-100000000}" "${intervals[@]}" --set progress_interval=600 -o "$dir"
   ;;
 table)
   [ $# -ge 1 ] || { echo "usage: $0 table RUN_DIR..." >&2; exit 2; }
@@ -88,16 +94,17 @@ for run in sys.argv[1:]:
     with h5py.File(os.path.join(run, "checkpoint.h5"), "r") as h:
         cfg = h["checkpoint/config"].attrs
         interval = int(cfg["events_every"]) if "events_every" in cfg and int(cfg["events_every"]) > 0 else int(cfg["sample_every"])
+        dt = float(cfg["dt"])
     tally = {n: series(run, n)[1][-1] for n in ("growth_events", "loss_events", "growth_events_coarse", "loss_events_coarse")}
-    print(f"# growth steps from the tallies at the last sample (censuses every {interval} steps since that interval was set):")
-    step_table(tally, interval)
+    print(f"# growth steps from the tallies at the last sample (censuses every {interval} steps of {dt:g} since that interval was set):")
+    step_table(tally, interval, dt)
 PY
   ;;
 window)
   [ $# -eq 2 ] || { echo "usage: $0 window RUN_DIR STEPS" >&2; exit 2; }
   run=$1 steps=$2 events=${WINDOW_EVENTS:-25}
   [ -f "$run/checkpoint.h5" ] || { echo "$0: no checkpoint in $run" >&2; exit 2; }
-  from=$(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r'); print(int(h['checkpoint'].attrs['step']))" "$run/checkpoint.h5")
+  read -r from t0 dt < <(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r')['checkpoint']; print(int(h.attrs['step']), round(float(h.attrs['time']), 3), float(h['config'].attrs['dt']))" "$run/checkpoint.h5")
   win="$run/window$from"
   if [ ! -f "$win/summary.json" ]; then
     mkdir -p "$win"
@@ -105,15 +112,15 @@ window)
     "$exe" run --restart "$win/start.h5" --set steps=$((from + steps)) --set events_every="$events" \
       --set checkpoint_every=0 --set progress_interval=0 -o "$win" >/dev/null
   fi
-  echo "# window from step $from ($(/usr/bin/python3 -c "print($from * 0.005)") tau), $steps steps, censuses every $events; $(run_stamp)"
-  /usr/bin/python3 - "$win" "$events" <<PY
+  echo "# window from step $from ($t0 tau), $steps steps of $dt, censuses every $events; $(run_stamp)"
+  /usr/bin/python3 - "$win" "$events" "$dt" <<PY
 import json, sys
 $series_py
-win, events = sys.argv[1], int(sys.argv[2])
+win, events, dt = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
 m = json.load(open(f"{win}/summary.json"))["scene_measures"]
 _, f = series(win, "mass_fractions")
 print("# mass fractions at the window's first and last sample: " + " ".join(f"{x:.3f}" for x in f[0]) + " -> " + " ".join(f"{x:.3f}" for x in f[-1]))
-step_table(m, events)
+step_table(m, events, dt)
 PY
   ;;
 *)
