@@ -14,7 +14,8 @@
 #       whose cluster ids scripts/capsid_cages fits) override, the last four in steps; SET="key=value
 #       ..." adds scene settings (e.g. the site rows: SET="site_depth_outer=0"). DT on a
 #       continuation changes the step from there on (and the intervals with it: the tallies
-#       start afresh).
+#       start afresh); ADJUST="key=value ..." changes adjustable settings of a continuation
+#       (e.g. "skin=1.4", the faster list skin at DT=0.02).
 #   benchmarks/capsid_assembly_long.sh table RUN_DIR...      mass fractions by size group at
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
 #       complete shell, the last sample; and P_n = g / (g + l) by size from the tallies at the
@@ -62,6 +63,7 @@ run)
              --set output.every="${FRAMES:-$(steps_of 5000)}" --set checkpoint_every="${CHECKPOINT:-$(steps_of 1000)}")
   if [ -f "$dir/checkpoint.h5" ]; then
     [ -n "${DT:-}" ] || intervals=()
+    for kv in ${ADJUST:-}; do intervals+=(--set "$kv"); done
     exec "$exe" run --restart "$dir/checkpoint.h5" ${DT:+--set dt="$DT"} "${intervals[@]}" -o "$dir"
   fi
   extra=()

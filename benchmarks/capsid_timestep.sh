@@ -12,12 +12,61 @@
 # usage: benchmarks/capsid_timestep.sh OUT DT...   E (0.1225), SEEDS ("41 42 43"), TAU (1000),
 #        SHELL_TAU (200), CAPSOMERS (300, at particle_fraction 0.033), SET ("site_depth_outer=0")
 #        override. Runs already complete in OUT are kept; the table goes to stdout.
+#        benchmarks/capsid_timestep.sh rate CHECKPOINT TAU ROUNDS DT:SKIN...  the cost of TAU
+#        time units continued from CHECKPOINT (a capsid run's state, e.g. with clusters) at each
+#        step and list skin, the settings in turn in every round (their order rotated from round
+#        to round): wall seconds per tau (less the start's, from a run of 10 steps) and peak
+#        memory per particle, the median and range over the rounds.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+. benchmarks/common.sh
+if [ "${1:-}" = rate ]; then
+  [ $# -ge 5 ] || { echo "usage: $0 rate CHECKPOINT TAU ROUNDS DT:SKIN..." >&2; exit 2; }
+  ckpt=$2 tau=$3 rounds=$4
+  shift 4
+  settings=("$@")
+  read -r step n < <(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r')['checkpoint']; print(int(h.attrs['step']), int(h.attrs['n_global']))" "$ckpt")
+  echo "# capsid_timestep.sh rate: from $ckpt (step $step, $n particles), $tau tau per run, $rounds rounds; $(run_stamp)"
+  commit_line
+  one() {  # DT SKIN STEPS -> "wall_s peak_kB"
+    rm -rf "$work/rate"
+    /usr/bin/time -f "%e %M" -o "$work/time" "$exe" run --restart "$ckpt" --set dt="$1" --set skin="$2" \
+      --set steps=$((step + $3)) --set events_every="$(/usr/bin/python3 -c "print(max(1, round(0.25 / $1)))")" \
+      --set progress_interval=0 --set output.every=0 --set checkpoint_every=0 -o "$work/rate" >/dev/null
+    cat "$work/time"
+  }
+  start=$(one 0.005 0.7 10 | awk '{print $1}')
+  echo "# start (10 steps): $start s"
+  for ((r = 0; r < rounds; r++)); do
+    for ((k = 0; k < ${#settings[@]}; k++)); do
+      s=${settings[$(((k + r) % ${#settings[@]}))]}
+      dt=${s%%:*} skin=${s##*:}
+      steps=$(/usr/bin/python3 -c "print(round($tau / $dt))")
+      read -r wall kb < <(one "$dt" "$skin" "$steps")
+      echo "round $r dt $dt skin $skin steps $steps wall $wall s_per_tau $(/usr/bin/python3 -c "print(f'{($wall - $start) / $tau:.4f}')") bytes_per_particle $((kb * 1024 / n))"
+    done
+  done | tee "$work/rounds"
+  echo "| dt | skin | s per tau, median (min-max) | against the first setting, median of per-round ratios (min-max) | B/particle |"
+  echo "|---|---|---|---|---|"
+  /usr/bin/python3 - "$work/rounds" "${settings[@]}" <<'PY'
+import sys, statistics as st
+rows = [l.split() for l in open(sys.argv[1])]
+cost = {}
+for r in rows:
+    cost.setdefault((r[3], r[5]), {})[int(r[1])] = (float(r[11]), int(r[13]))
+base = cost[tuple(sys.argv[2].split(":"))]
+for s in sys.argv[2:]:
+    c = cost[tuple(s.split(":"))]
+    per = [c[k][0] for k in sorted(c)]
+    ratio = [base[k][0] / c[k][0] for k in sorted(c)]
+    print(f"| {s.split(':')[0]} | {s.split(':')[1]} | {st.median(per):.4f} ({min(per):.4f}-{max(per):.4f}) | "
+          f"{st.median(ratio):.2f} ({min(ratio):.2f}-{max(ratio):.2f}) | {max(v[1] for v in c.values())} |")
+PY
+  exit 0
+fi
 [ $# -ge 2 ] || { echo "usage: $0 OUT DT..." >&2; exit 2; }
 out=$1
 shift
-. benchmarks/common.sh
 e=${E:-0.1225}
 seeds=${SEEDS:-"41 42 43"}
 tau=${TAU:-1000}
