@@ -11,9 +11,9 @@
 # usage: benchmarks/capsid_growth_steps.sh [OUT] [SIZES...]   (defaults /tmp/capsid_growth;
 #        sizes 1 2 3 4 6 8 12 16 20 25 30 35 40 45 50 55); E (0.09), SEEDS ("41 42"), STEPS
 #        (100000), SAMPLE (25 steps), CAPSOMERS (120), MONOMER_CAPSOMERS (300), SOLVENT
-#        (implicit), PARTICLE_FRACTION (0.022), DT (the scene's 0.005) and SET ("key=value ...": more scene settings,
-#        e.g. the site rows "site_depth_outer=0") override. Runs already complete in OUT are kept (one OUT per setting); the
-#        table goes to stdout.
+#        (implicit), PARTICLE_FRACTION (0.022), DT (the scene's 0.005) and SET ("key=value
+#        ...": more scene settings, e.g. the site rows "site_depth_outer=0") override. Runs
+#        already complete in OUT are kept (one OUT per setting); the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-/tmp/capsid_growth}

@@ -23,6 +23,7 @@ cd "$(dirname "$0")/.."
 if [ "${1:-}" = rate ]; then
   [ $# -ge 5 ] || { echo "usage: $0 rate CHECKPOINT TAU ROUNDS DT:SKIN..." >&2; exit 2; }
   ckpt=$2 tau=$3 rounds=$4
+  [ -f "$ckpt" ] || { echo "$0: no checkpoint $ckpt" >&2; exit 2; }
   shift 4
   settings=("$@")
   read -r step n < <(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r')['checkpoint']; print(int(h.attrs['step']), int(h.attrs['n_global']))" "$ckpt")
