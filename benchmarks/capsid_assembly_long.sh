@@ -58,7 +58,8 @@ run)
   [ $# -eq 3 ] || { echo "usage: $0 run OUT E SEED" >&2; exit 2; }
   dir="$1/e$2_seed$3"
   dt=${DT:-0.005}
-  steps_of() { /usr/bin/python3 -c "print(max(1, round($1 / $dt)))"; }
+  steps_for 1 "$dt" >/dev/null  # a DT that is not a number stops here, in one line
+  steps_of() { steps_for "$1" "$dt"; }
   intervals=(--set sample_every="${SAMPLE:-$(steps_of 100)}" --set events_every="${EVENTS:-$(steps_of 0.25)}"
              --set output.every="${FRAMES:-$(steps_of 5000)}" --set checkpoint_every="${CHECKPOINT:-$(steps_of 1000)}")
   if [ -f "$dir/checkpoint.h5" ]; then

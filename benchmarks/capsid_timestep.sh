@@ -26,13 +26,14 @@ if [ "${1:-}" = rate ]; then
   [ -f "$ckpt" ] || { echo "$0: no checkpoint $ckpt" >&2; exit 2; }
   shift 4
   settings=("$@")
+  for s in "${settings[@]}"; do steps_for "$tau" "${s%%:*}" >/dev/null; done
   read -r step n < <(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r')['checkpoint']; print(int(h.attrs['step']), int(h.attrs['n_global']))" "$ckpt")
   echo "# capsid_timestep.sh rate: from $ckpt (step $step, $n particles), $tau tau per run, $rounds rounds; $(run_stamp)"
   commit_line
   one() {  # DT SKIN STEPS -> "wall_s peak_kB"
     rm -rf "$work/rate"
     /usr/bin/time -f "%e %M" -o "$work/time" "$exe" run --restart "$ckpt" --set dt="$1" --set skin="$2" \
-      --set steps=$((step + $3)) --set events_every="$(/usr/bin/python3 -c "print(max(1, round(0.25 / $1)))")" \
+      --set steps=$((step + $3)) --set events_every="$(steps_for 0.25 "$1")" \
       --set progress_interval=0 --set output.every=0 --set checkpoint_every=0 -o "$work/rate" >/dev/null
     cat "$work/time"
   }
@@ -42,7 +43,7 @@ if [ "${1:-}" = rate ]; then
     for ((k = 0; k < ${#settings[@]}; k++)); do
       s=${settings[$(((k + r) % ${#settings[@]}))]}
       dt=${s%%:*} skin=${s##*:}
-      steps=$(/usr/bin/python3 -c "print(round($tau / $dt))")
+      steps=$(steps_for "$tau" "$dt")
       read -r wall kb < <(one "$dt" "$skin" "$steps")
       echo "round $r dt $dt skin $skin steps $steps wall $wall s_per_tau $(/usr/bin/python3 -c "print(f'{($wall - $start) / $tau:.4f}')") bytes_per_particle $((kb * 1024 / n))"
     done
@@ -79,15 +80,15 @@ for kv in $set_kv; do extra+=(--set "$kv"); done
 mkdir -p "$out"
 echo "# capsid_timestep.sh: dt $*; e $e; seeds $seeds; $tau tau from monomers ($capsomers capsomers, p 0.033, implicit, $set_kv); closed shell without friction $shell_tau tau; $(run_stamp)"
 commit_line
-steps_of() { /usr/bin/python3 -c "print(round($1 / $2))"; }
+for dt in "$@"; do steps_for "$tau" "$dt" >/dev/null; done  # each DT a number, checked before any run
 for dt in "$@"; do
-  census=$(steps_of 0.1 "$dt")
+  census=$(steps_for 0.1 "$dt")
   for seed in $seeds; do
     dir="$out/dt${dt}_seed$seed"
     [ -f "$dir/summary.json" ] && continue
     "$exe" run capsid-assembly "${extra[@]}" --set capsomers="$capsomers" --set particle_fraction=0.033 \
       --set solvent=implicit --set start=monomers --set attraction="$e" --set seed="$seed" --set dt="$dt" \
-      --set steps="$(steps_of "$tau" "$dt")" --set sample_every="$census" --set output.every=0 \
+      --set steps="$(steps_for "$tau" "$dt")" --set sample_every="$census" --set output.every=0 \
       --set progress_interval=0 -o "$dir.tmp" >/dev/null
     mv "$dir.tmp" "$dir"
   done
@@ -95,8 +96,8 @@ for dt in "$@"; do
   if [ ! -f "$dir/summary.json" ]; then
     "$exe" run capsid-assembly "${extra[@]}" --set capsomers=60 --set particle_fraction=0.033 \
       --set solvent=implicit --set start=shell --set attraction="$e" --set friction_translation=0 \
-      --set friction_rotation=0 --set dt="$dt" --set steps="$(steps_of "$shell_tau" "$dt")" \
-      --set sample_every="$(steps_of 1 "$dt")" --set output.every=0 --set progress_interval=0 \
+      --set friction_rotation=0 --set dt="$dt" --set steps="$(steps_for "$shell_tau" "$dt")" \
+      --set sample_every="$(steps_for 1 "$dt")" --set output.every=0 --set progress_interval=0 \
       -o "$dir.tmp" >/dev/null
     mv "$dir.tmp" "$dir"
   fi

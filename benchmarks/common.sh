@@ -63,3 +63,16 @@ build_header() {
          "built with Debian's package flags ($(dpkg-buildflags --get CXXFLAGS 2>/dev/null | awk '{print $1, $2}') ...)"
   fi
 }
+
+# steps_for TIME DT: the whole number of steps (at least 1) nearest to TIME time units at step
+# DT; a DT or TIME that is not a positive number stops the script with one line (exit 2).
+steps_for() {
+  /usr/bin/python3 -c "
+import sys
+try:
+    t, dt = float(sys.argv[1]), float(sys.argv[2])
+    assert t > 0 and dt > 0
+except (ValueError, AssertionError):
+    sys.exit(f'time {sys.argv[1]!r} and step {sys.argv[2]!r} must be positive numbers')
+print(max(1, round(t / dt)))" "$1" "$2" || exit 2
+}
