@@ -58,9 +58,20 @@ struct BondCensus {
 /// cluster of n whose successor has n + 1 members `grew`, n - 1 `shrank`; `seen` counts the
 /// earlier clusters of each size, so grew[n-1] / seen[n-1] is the chance that a cluster of n
 /// gains one member within one interval, and grew / (grew + shrank) that a step is growth.
+///
+/// The rest count what a +-1 step misses. A piece is two or more members of an earlier cluster
+/// that end up together in a later cluster other than its successor: `pieces` counts them by the
+/// piece's size, `split` the earlier clusters (by size) that left one or more. `merged` counts the
+/// earlier clusters of two or more whose successor also took a piece of two or more from another
+/// earlier cluster; `assembled`, the later clusters of two or more (by size) made only of
+/// earlier monomers. So pieces[k-1] against assembled[k-1] says whether the clusters of k that
+/// appear come from larger ones breaking up or from monomers meeting.
 struct ClusterEvents {
     std::vector<double> grew, shrank, seen;
-    explicit ClusterEvents(std::size_t max_size = 0) : grew(max_size), shrank(max_size), seen(max_size) {}
+    std::vector<double> split, pieces, merged, assembled;
+    explicit ClusterEvents(std::size_t max_size = 0)
+        : grew(max_size), shrank(max_size), seen(max_size), split(max_size), pieces(max_size),
+          merged(max_size), assembled(max_size) {}
     void tally(const BondCensus& before, const BondCensus& after);
 };
 

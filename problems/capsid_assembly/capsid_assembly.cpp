@@ -298,7 +298,7 @@ public:
             const double shell = closed_cage(design_, kShell, a, rule_.bond_range).energy;
             for (const int n : {24, 12}) cage_cost_.push_back(closed_cage(design_, n, a, rule_.bond_range).energy - shell);
         }
-        return {{"bonds", {double(census.bonds.size())}},
+        Measures m{{"bonds", {double(census.bonds.size())}},
                 {"cage_energy_above_shell", cage_cost_},
                 {"clusters", {double(census.cluster_size.size())}},
                 {"complete_shells", {double(last_shells_)}},
@@ -309,13 +309,9 @@ public:
                 {"mass_fractions", census.mass_fractions(kGroups)},
                 {"yield", {double(last_shells_ * kShell) / double(std::max<std::int64_t>(1, n_capsomers_))}},
                 {"solvent_temperature", {solvent_t}},
-                {"capsomer_temperature", {2 * k.translational / (3 * nb), 2 * k.rotational / (3 * nb)}},
-                {"growth_events", events_.grew},
-                {"loss_events", events_.shrank},
-                {"clusters_seen", events_.seen},
-                {"growth_events_coarse", coarse_.grew},
-                {"loss_events_coarse", coarse_.shrank},
-                {"clusters_seen_coarse", coarse_.seen}};
+                {"capsomer_temperature", {2 * k.translational / (3 * nb), 2 * k.rotational / (3 * nb)}}};
+        add_tallies(m);
+        return m;
     }
 
     /// With events_every, the growth and loss tallies come from censuses at that interval
@@ -327,11 +323,8 @@ public:
     // keeps their interval; at another interval they start afresh (tallies at two intervals
     // would not add up to either).
     Measures saved_state() const override {
-        Measures m{{"events_interval", {double(events_interval())}},
-                   {"growth_events", events_.grew}, {"loss_events", events_.shrank},
-                   {"clusters_seen", events_.seen},
-                   {"growth_events_coarse", coarse_.grew}, {"loss_events_coarse", coarse_.shrank},
-                   {"clusters_seen_coarse", coarse_.seen}};
+        Measures m{{"events_interval", {double(events_interval())}}};
+        add_tallies(m);
         save_census(m, "previous", previous_);
         save_census(m, "previous_coarse", previous_coarse_);
         return m;
@@ -349,15 +342,15 @@ public:
                                         ? events_every_ > 0
                                         : static_cast<long long>(interval->second[0]) != events_interval();
         if (other_interval) return;  // the tallies start afresh
-        events_.grew = get("growth_events");
-        events_.shrank = get("loss_events");
-        events_.seen = get("clusters_seen");
+        // Tallies a checkpoint lacks (it predates them) start afresh; the others go on.
+        for (const auto& [name, tally] : kTallies)
+            if (state.count(name) > 0) events_.*tally = get(name);
         previous_ = restore_census(get, "previous");
-        // Checkpoints from before the coarse tallies start them afresh.
         if (state.count("growth_events_coarse") == 0) return;
-        coarse_.grew = get("growth_events_coarse");
-        coarse_.shrank = get("loss_events_coarse");
-        coarse_.seen = get("clusters_seen_coarse");
+        for (const auto& [name, tally] : kTallies) {
+            const std::string coarse = std::string(name) + "_coarse";
+            if (state.count(coarse) > 0) coarse_.*tally = get(coarse.c_str());
+        }
         previous_coarse_ = restore_census(get, "previous_coarse");
     }
 
@@ -382,6 +375,18 @@ private:
     /// Per capsomer, the design's lowest closed cage of 24 and of 12 above its shell (energy
     /// of the attraction and repulsion, closed_cage): what keeps assembly from ending in them.
     std::vector<double> cage_cost_;
+
+    /// The event tallies by name, for measures and checkpoints (the coarse ones add "_coarse").
+    using Tally = std::vector<double> ClusterEvents::*;
+    static constexpr std::pair<const char*, Tally> kTallies[] = {
+        {"growth_events", &ClusterEvents::grew},        {"loss_events", &ClusterEvents::shrank},
+        {"clusters_seen", &ClusterEvents::seen},        {"split_events", &ClusterEvents::split},
+        {"pieces_shed", &ClusterEvents::pieces},        {"merge_events", &ClusterEvents::merged},
+        {"assembled_from_monomers", &ClusterEvents::assembled}};
+    void add_tallies(Measures& m) const {
+        for (const auto& [name, tally] : kTallies) m.emplace_back(name, events_.*tally);
+        for (const auto& [name, tally] : kTallies) m.emplace_back(std::string(name) + "_coarse", coarse_.*tally);
+    }
 
     /// Steps between the censuses the event tallies compare.
     long long events_interval() const { return events_every_ > 0 ? events_every_ : sample_every_; }

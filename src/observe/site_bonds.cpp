@@ -67,27 +67,51 @@ std::vector<double> BondCensus::mass_fractions(const std::vector<int>& upper) co
 void ClusterEvents::tally(const BondCensus& before, const BondCensus& after) {
     if (before.bodies != after.bodies)
         throw std::logic_error("cluster events: the censuses hold different bodies");
-    const std::size_t n_before = before.cluster_size.size();
-    // For each earlier cluster, its members' later clusters.
+    const std::size_t n_before = before.cluster_size.size(), n_after = after.cluster_size.size();
+    auto add = [](std::vector<double>& t, int n) {
+        if (n >= 1 && std::size_t(n) <= t.size()) t[std::size_t(n - 1)] += 1;
+    };
+    // Each earlier cluster's members by later cluster: (later cluster, members) pairs.
     std::vector<std::vector<int>> later(n_before);
     for (std::size_t b = 0; b < before.bodies.size(); ++b)
         later[std::size_t(before.cluster[b])].push_back(after.cluster[b]);
+    std::vector<std::vector<std::pair<int, int>>> parts(n_before);
+    std::vector<int> successor(n_before, -1);
+    // Per later cluster: the earlier clusters that gave it two or more members, and whether
+    // every member was an earlier monomer.
+    std::vector<int> pieces_in(n_after, 0);
+    std::vector<char> from_monomers(n_after, 1);
     for (std::size_t c = 0; c < n_before; ++c) {
         std::vector<int>& to = later[c];
         std::sort(to.begin(), to.end());
-        int best = -1, best_count = 0;
+        int best_count = 0;
         for (std::size_t k = 0; k < to.size();) {
             std::size_t e = k;
             while (e < to.size() && to[e] == to[k]) ++e;
-            if (int(e - k) > best_count) best = to[k], best_count = int(e - k);
+            parts[c].emplace_back(to[k], int(e - k));
+            if (int(e - k) > best_count) successor[c] = to[k], best_count = int(e - k);
+            if (e - k >= 2) pieces_in[std::size_t(to[k])] += 1;
+            if (before.cluster_size[c] > 1) from_monomers[std::size_t(to[k])] = 0;
             k = e;
         }
-        const int n = before.cluster_size[c], m = after.cluster_size[std::size_t(best)];
-        if (n < 1 || std::size_t(n) > seen.size()) continue;
-        seen[std::size_t(n - 1)] += 1;
-        if (m == n + 1) grew[std::size_t(n - 1)] += 1;
-        if (m == n - 1) shrank[std::size_t(n - 1)] += 1;
     }
+    for (std::size_t c = 0; c < n_before; ++c) {
+        const int n = before.cluster_size[c], d = successor[c];
+        const int m = after.cluster_size[std::size_t(d)];
+        add(seen, n);
+        if (m == n + 1) add(grew, n);
+        if (m == n - 1) add(shrank, n);
+        bool left_piece = false;
+        int own_at_successor = 0;
+        for (const auto& [to, count] : parts[c]) {
+            if (to == d) own_at_successor = count;
+            else if (count >= 2) add(pieces, count), left_piece = true;
+        }
+        if (left_piece) add(split, n);
+        if (own_at_successor >= 2 && pieces_in[std::size_t(d)] >= 2) add(merged, n);
+    }
+    for (std::size_t d = 0; d < n_after; ++d)
+        if (after.cluster_size[d] >= 2 && from_monomers[d]) add(assembled, after.cluster_size[d]);
 }
 
 BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondRule& rule,

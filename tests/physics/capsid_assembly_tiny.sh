@@ -131,14 +131,18 @@ n_table1 = json.load(open(f"{d}/table1/summary.json"))["N"]
 print(f"table1 preset: {n_table1} particles")
 if n_table1 != 120875 + 4125 * 30:
     fail.append(f"the table1 preset has {n_table1} particles, not Table 1's system (244625)")
-tallies = ("growth_events", "loss_events", "clusters_seen", "growth_events_coarse", "loss_events_coarse",
-           "clusters_seen_coarse")
+tallies = [name + suffix for suffix in ("", "_coarse")
+           for name in ("growth_events", "loss_events", "clusters_seen", "split_events", "pieces_shed",
+                        "merge_events", "assembled_from_monomers")]
 ev = {r: json.load(open(f"{d}/events_{r}/summary.json"))["scene_measures"] for r in ("sampled", "between", "same", "other")}
 print(f"event tallies every 25 steps: {sum(ev['sampled']['growth_events']):.0f} growth, "
       f"{sum(ev['sampled']['loss_events']):.0f} loss events from samples; "
       f"{sum(ev['between']['growth_events']):.0f}, {sum(ev['between']['loss_events']):.0f} between samples 100 apart")
 if sum(ev["sampled"]["growth_events"]) < 2:
     fail.append("too few growth events to compare the tallies")
+print("pieces shed, merges, clusters assembled from monomers (between samples): "
+      f"{sum(ev['between']['pieces_shed']):.0f}, {sum(ev['between']['merge_events']):.0f}, "
+      f"{sum(ev['between']['assembled_from_monomers']):.0f}")
 if any(ev["sampled"][k] != ev["between"][k] for k in tallies):
     fail.append("tallies between samples (events_every) differ from those of samples at that interval")
 if any(ev["same"][k] != ev["between"][k] for k in tallies):

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <set>
 #include <utility>
 
@@ -360,9 +361,38 @@ TEST(Capsomer, ClusterEventsBySize) {
     EXPECT_EQ(e.shrank[1], 1); // {2, 3} -> {2} (ties: the first found)
     EXPECT_EQ(e.seen[0], 1);   // the monomer 4, absorbed: a jump 1 -> 3, neither
     EXPECT_EQ(e.grew[0] + e.shrank[0], 0);
+    for (const auto* t : {&e.split, &e.pieces, &e.merged, &e.assembled})
+        EXPECT_EQ(std::accumulate(t->begin(), t->end(), 0.0), 0);  // only single members moved
     BondCensus other = after;
     other.bodies = {0, 1, 2, 3, 5};
     EXPECT_THROW(e.tally(before, other), std::logic_error);
+}
+
+TEST(Capsomer, ClusterEventsPiecesAndMergers) {
+    // Bodies 0..11: {0..5}, {6, 7}, {8}, {9}, {10, 11}, then {0..3, 6, 7} (the six lost the
+    // piece {4, 5} and took the pair {6, 7}), {4, 5}, {8, 9} (two monomers met), {10}, {11}.
+    BondCensus before, after;
+    before.bodies = after.bodies = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11};
+    before.cluster = {0, 0, 0, 0, 0, 0, 1, 1, 2, 3, 4, 4};
+    before.cluster_size = {6, 2, 1, 1, 2};
+    after.cluster = {0, 0, 0, 0, 1, 1, 0, 0, 2, 2, 3, 4};
+    after.cluster_size = {6, 2, 2, 1, 1};
+    ClusterEvents e(60);
+    e.tally(before, after);
+    EXPECT_EQ(e.seen[5], 1);
+    EXPECT_EQ(e.split[5], 1);     // the six left a piece
+    EXPECT_EQ(e.pieces[1], 1);    // of two: {4, 5}
+    EXPECT_EQ(e.merged[5], 1);    // the six's successor took the pair
+    EXPECT_EQ(e.merged[1], 1);    // and the pair's successor is the same cluster
+    EXPECT_EQ(e.assembled[1], 1); // {8, 9}
+    EXPECT_EQ(e.grew[0], 2);      // 8 and 9 each joined a monomer
+    EXPECT_EQ(e.shrank[1], 1);    // {10, 11} fell apart into monomers: a step, not a piece
+    EXPECT_EQ(e.grew[5] + e.shrank[5], 0);  // 6 -> 6 by a swap
+    const double all_pieces = std::accumulate(e.pieces.begin(), e.pieces.end(), 0.0);
+    const double all_splits = std::accumulate(e.split.begin(), e.split.end(), 0.0);
+    EXPECT_EQ(all_pieces, 1);
+    EXPECT_EQ(all_splits, 1);
+    EXPECT_EQ(std::accumulate(e.assembled.begin(), e.assembled.end(), 0.0), 1);
 }
 
 TEST(Capsomer, PentagonalHexecontahedronDesign) {
