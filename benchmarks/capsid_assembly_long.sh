@@ -23,7 +23,8 @@
 #   benchmarks/capsid_assembly_long.sh window RUN_DIR STEPS  copies RUN_DIR's checkpoint to
 #       RUN_DIR/window<STEP> and continues it STEPS steps with censuses every WINDOW_EVENTS (25)
 #       steps: the same table over a short stretch at a finer interval (a continuation at another
-#       interval starts the tallies afresh, so they are the window's own).
+#       interval starts the tallies afresh, so they are the window's own), and where the clusters
+#       of each size come from: pieces shed by larger ones, monomers meeting, single steps up.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 . benchmarks/common.sh
@@ -47,6 +48,25 @@ def step_table(tally, interval, dt):
             w = wilson(g, g + l)
             cells += [f"{g:.0f}", f"{l:.0f}", "-" if w is None else f"{w[0]:.3f} ({w[1]:.3f}-{w[2]:.3f})"]
         print("| " + " | ".join(cells) + " |")
+def piece_table(tally, interval, dt, span):
+    """Where clusters of each size come from, per 1000 tau over span tau: pieces shed by larger
+    clusters, clusters assembled from monomers alone, and (for 3+) single steps up from n - 1;
+    and the clusters of each size that shed a piece or merged with a piece of another."""
+    if "pieces_shed" not in tally:
+        print("# (no piece tallies: a run from before they were counted)")
+        return
+    print(f"| size n | pieces of n shed ({dt * interval:g} tau) | assembled from monomers | grew from n - 1 "
+          f"| clusters of n that split | merged | pieces shed ({2 * dt * interval:g} tau) | split | merged |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    per = 1000.0 / span
+    for lo, hi in ((2, 2), (3, 3), (4, 5), (6, 10), (11, 20), (21, 30), (31, 40), (41, 59), (2, 5), (6, 59)):
+        r = lambda name, shift=0: per * sum(tally[name][k - 1 - shift] for k in range(lo, hi + 1))
+        cells = [f"{lo}" if lo == hi else f"{lo}-{hi}"]
+        values = [r("pieces_shed"), r("assembled_from_monomers"), r("growth_events", 1), r("split_events"),
+                  r("merge_events"), r("pieces_shed_coarse"), r("split_events_coarse"), r("merge_events_coarse")]
+        cells += [f"{v:.1f}" for v in values]
+        print("| " + " | ".join(cells) + " |")
+    print("# rates per 1000 tau; grew from n - 1 for n = 2 counts both monomers of each new dimer")
 def series(run, name):
     """An observable over a run and its continuations (emergentpy reads them as one), as rows."""
     t, v = Run(run).observable(name)
@@ -116,14 +136,15 @@ window)
       --set checkpoint_every=0 --set progress_interval=0 -o "$win" >/dev/null
   fi
   echo "# window from step $from ($t0 tau), $steps steps of $dt, censuses every $events; $(run_stamp)"
-  /usr/bin/python3 - "$win" "$events" "$dt" <<PY
+  /usr/bin/python3 - "$win" "$events" "$dt" "$steps" <<PY
 import json, sys
 $series_py
-win, events, dt = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+win, events, dt, steps = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
 m = json.load(open(f"{win}/summary.json"))["scene_measures"]
 _, f = series(win, "mass_fractions")
 print("# mass fractions at the window's first and last sample: " + " ".join(f"{x:.3f}" for x in f[0]) + " -> " + " ".join(f"{x:.3f}" for x in f[-1]))
 step_table(m, events, dt)
+piece_table(m, events, dt, steps * dt)
 PY
   ;;
 *)

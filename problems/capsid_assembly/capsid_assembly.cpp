@@ -257,20 +257,22 @@ public:
         }
     }
 
-    /// Each capsomer's cluster (index, clusters ordered by their first member's id) and that
-    /// cluster's size, with every trajectory frame: renders colour shells and fragments by them.
+    /// Each capsomer's cluster (index, clusters ordered by their first member's id), that
+    /// cluster's size and the capsomer's bonds, with every trajectory frame: renders colour
+    /// shells and fragments by them, and the bonds tell a closed ring from an open chain.
     Measures body_frame_values(Simulation& sim) override {
         const BondCensus census = site_bond_census(sim, rule_);
         const ParticleStore& bodies = sim.bodies();
-        std::vector<double> cluster(bodies.n_owned(), -1), size(bodies.n_owned(), 0);
+        std::vector<double> cluster(bodies.n_owned(), -1), size(bodies.n_owned(), 0), bonds(bodies.n_owned(), 0);
         for (std::size_t b = 0; b < bodies.n_owned(); ++b) {
             const auto it = std::lower_bound(census.bodies.begin(), census.bodies.end(), bodies.id[b]);
             if (it == census.bodies.end() || *it != bodies.id[b]) continue;
             const int c = census.cluster[static_cast<std::size_t>(it - census.bodies.begin())];
             cluster[b] = c;
             size[b] = census.cluster_size[static_cast<std::size_t>(c)];
+            bonds[b] = census.degree[static_cast<std::size_t>(it - census.bodies.begin())];
         }
-        return {{"cluster", cluster}, {"cluster_size", size}};
+        return {{"cluster", cluster}, {"cluster_size", size}, {"bonds", bonds}};
     }
 
     Measures measures(Simulation& sim) override {

@@ -26,9 +26,10 @@ import numpy as np
 b = h5py.File(f"{sys.argv[1]}/trajectory.h5", "r")["particles/bodies"]
 cluster, size = b["cluster/value"], b["cluster_size/value"]
 assert np.all(cluster[0] == 0) and np.all(size[0] == 60), "the starting shell is not one cluster of 60"
+assert np.all(b["bonds/value"][0] == 5), "the starting shell's capsomers do not have 5 bonds each"
 largest = json.load(open(f"{sys.argv[1]}/summary.json"))["scene_measures"]["largest_cluster"]
 assert size[-1].max() == largest, f"last frame's largest cluster {size[-1].max()}, measured {largest}"
-print(f"ok: capsomers' cluster labels (start: one cluster of 60; end: largest {largest:.0f})")
+print(f"ok: capsomers' cluster labels (start: one cluster of 60, 5 bonds each; end: largest {largest:.0f})")
 PY
 for run in fluid drum capsid; do
   # pvpython prints ParaView's own start-up lines; only the checks' lines matter.
