@@ -23,7 +23,8 @@
 #   benchmarks/capsid_assembly_long.sh window RUN_DIR STEPS  copies RUN_DIR's checkpoint to
 #       RUN_DIR/window<STEP> and continues it STEPS steps with censuses every WINDOW_EVENTS (25)
 #       steps: the same table over a short stretch at a finer interval (a continuation at another
-#       interval starts the tallies afresh, so they are the window's own), and where the clusters
+#       interval starts the tallies afresh; at the checkpoint's own interval they go on from it,
+#       and the checkpoint's are subtracted: either way they are the window's own), and where the clusters
 #       of each size come from: pieces shed by larger ones, monomers meeting, single steps up.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -141,6 +142,16 @@ import json, sys
 $series_py
 win, events, dt, steps = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
 m = json.load(open(f"{win}/summary.json"))["scene_measures"]
+# At the checkpoint's own interval the tallies go on from it: the window's are the difference.
+with h5py.File(f"{win}/start.h5", "r") as h:
+    state = h["checkpoint/scene_state"]
+    if "events_interval" in state and int(state["events_interval"][0]) == events:
+        print("# (the checkpoint tallied at this interval too: its tallies are subtracted)")
+        for base in ("growth_events", "loss_events", "clusters_seen", "split_events", "pieces_shed",
+                     "merge_events", "assembled_from_monomers"):
+            for name in (base, base + "_coarse"):
+                if name in state:
+                    m[name] = [a - b for a, b in zip(m[name], state[name][:])]
 _, f = series(win, "mass_fractions")
 print("# mass fractions at the window's first and last sample: " + " ".join(f"{x:.3f}" for x in f[0]) + " -> " + " ".join(f"{x:.3f}" for x in f[-1]))
 step_table(m, events, dt)
