@@ -44,7 +44,7 @@ PY
 "$scripts/plot_sawtooth_seeds" "$dir/vs/seeds.png" "$dir/vs" "$dir/vs2" >/dev/null
 # capsid-assembly's mass fractions: the closed shell at e = 0.09 is all in the group of 60.
 "$exe" run capsid-assembly --preset tiny --set attraction=0.09 --set steps=400 --set sample_every=100 \
-  --set progress_interval=0 -o "$dir/cs" >/dev/null
+  --set output.every=100 --set progress_interval=0 -o "$dir/cs" >/dev/null
 "$scripts/plot_capsid_mass_fractions" "$dir/cs/mass.png" "$dir/cs" >"$dir/cs/mass.txt"
 grep -q "60 1.000$" "$dir/cs/mass.txt" || { echo "FAIL: the shell's mass fractions: $(cat "$dir/cs/mass.txt")"; exit 1; }
 # Its shape: one closed cage of 60 on a sphere of the design's centre radius |c| = 4.215747
@@ -55,6 +55,45 @@ awk -F'|' '$2 + 0 == 60 && $6 ~ /yes/ && ($3 - 4.215747) ^ 2 < 0.04 ^ 2 {found =
 for bad in "$dir/none" "$dir/cs x" "$dir/cs 6 99"; do  # bad input: one line, status 1
   rc=0; err=$("$scripts/capsid_cages" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_cages $bad: status $rc, $err"; exit 1; }
+done
+# Each member of the shell predicts the same shell centre: exactly at the start; after 2 tau at
+# e = 0.09 every member within 1.5 of it and most within 0.5 (perfect patches at e = 0.1225 keep
+# ~75 % within 0.5, benchmarks/logs/capsid_shell_register_2026-12-05.log).
+"$scripts/capsid_shell_register" "$dir/cs" "$dir/cs" 6 0 -1 >"$dir/cs/register.txt"
+grep -q "^| 0 | 60 | 5.00 | 60 | 0 | 0 | 4.22 |$" "$dir/cs/register.txt" \
+  || { echo "FAIL: the shell's register at the start: $(cat "$dir/cs/register.txt")"; exit 1; }
+awk -F'|' '$2 + 0 == 400 && $3 + 0 == 60 && $5 + 0 >= 30 && $5 + $6 == 60 && $7 + 0 == 0 {found = 1} END {exit !found}' \
+  "$dir/cs/register.txt" || { echo "FAIL: the shell's register at step 400: $(cat "$dir/cs/register.txt")"; exit 1; }
+# Small clusters from monomers at a strong attraction, a frame at every sample: the script's mean
+# number of dimers and of monomers over the frames are the engine's measures at those steps.
+"$exe" run capsid-assembly --preset tiny --set start=monomers --set solvent=implicit --set attraction=0.3 \
+  --set dt=0.02 --set steps=10000 --set sample_every=250 --set output.every=250 --set progress_interval=0 \
+  -o "$dir/cm" >/dev/null
+"$scripts/capsid_small_clusters" "$dir/cm" 2 >"$dir/cm/small.txt"
+/usr/bin/python3 - "$dir/cm" "$scripts" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[2])
+import numpy as np
+from emergentpy import Run
+lines = open(f"{sys.argv[1]}/small.txt").read().splitlines()
+frames = int(lines[0].split(": ")[1].split()[0])
+dimers = [float(l.split("|")[2]) for l in lines if l.startswith("| 2 |")][0]
+monomers = float([l for l in lines if l.startswith("mass fractions")][0].split()[6].rstrip(","))
+_, engine_dimers = Run(sys.argv[1]).observable("dimers")
+_, mass = Run(sys.argv[1]).observable("mass_fractions")
+# The frames add step 0 (60 monomers, no dimers) to the samples; the script rounds to 2 and 3 decimals.
+assert frames == len(engine_dimers) + 1, (frames, len(engine_dimers))
+assert abs(dimers * frames - np.sum(engine_dimers)) < 0.005 * frames + 1e-9, (dimers, np.sum(engine_dimers))
+assert abs(monomers * frames - (np.asarray(mass)[:, 0].sum() + 1)) < 0.0005 * frames + 1e-9, (monomers, mass)
+assert np.sum(engine_dimers) > 0, "no dimers formed to compare"
+PY
+for bad in "$dir/none $dir/cs" "$dir/cs $dir/cm" "$dir/cs $dir/cs x" "$dir/cs $dir/cs 6 99"; do  # one line, status 1
+  rc=0; err=$("$scripts/capsid_shell_register" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_shell_register $bad: status $rc, $err"; exit 1; }
+done
+for bad in "$dir/none" "$dir/cm x"; do
+  rc=0; err=$("$scripts/capsid_small_clusters" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_small_clusters $bad: status $rc, $err"; exit 1; }
 done
 # The PW capsomer's closed cages, apart from the engine: its log's numbers, which the engine's
 # closed_cage() is compared with in physics_capsomer (benchmarks/logs/capsid_polymorphs_2026-12-04.log).
