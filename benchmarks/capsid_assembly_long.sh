@@ -8,7 +8,7 @@
 #   benchmarks/capsid_assembly_long.sh run OUT E SEED        starts OUT/e<E>_seed<SEED>, or
 #       continues it from its checkpoint; runs until STEPS (1e8) or SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
-#       CAPSOMERS (300), SOLVENT (implicit), DT (the scene's 0.005; the implicit solvent holds
+#       CAPSOMERS (300), PARTICLE_FRACTION (Table 1's 0.033), SOLVENT (implicit), DT (the scene's 0.005; the implicit solvent holds
 #       to 0.02, benchmarks/RESULTS.md "A longer step in the implicit solvent"), SAMPLE (100 tau),
 #       EVENTS (0.25 tau), CHECKPOINT (1000 tau) and FRAMES (5000 tau: between trajectory frames,
 #       whose cluster ids scripts/capsid_cages fits) override, the last four in steps; SET="key=value
@@ -90,7 +90,7 @@ run)
   fi
   extra=()
   for kv in ${SET:-}; do extra+=(--set "$kv"); done
-  exec "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction=0.033 \
+  exec "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction="${PARTICLE_FRACTION:-0.033}" \
     --set solvent="${SOLVENT:-implicit}" --set start=monomers --set attraction="$2" --set seed="$3" \
     --set dt="$dt" --set steps="${STEPS:-100000000}" "${intervals[@]}" --set progress_interval=600 -o "$dir"
   ;;

@@ -91,7 +91,16 @@ for bad in "$dir/none $dir/cs" "$dir/cs $dir/cm" "$dir/cs $dir/cs x" "$dir/cs $d
   rc=0; err=$("$scripts/capsid_shell_register" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_shell_register $bad: status $rc, $err"; exit 1; }
 done
-for bad in "$dir/none" "$dir/cm x"; do
+# A seeded dimer with no attraction: its census ends once, and the two capsomers drift apart
+# (no force holds them; relative diffusion takes them 3 beyond contact in a few tau, inside the
+# 20 tau window) before any bond forms again.
+"$exe" run capsid-assembly --preset tiny --set start=cluster --set cluster_size=2 --set solvent=implicit \
+  --set attraction=0 --set dt=0.02 --set steps=2500 --set sample_every=25 --set output.every=25 \
+  --set progress_interval=0 -o "$dir/cd" >/dev/null
+"$scripts/capsid_small_clusters" "$dir/cd" 2 20 >"$dir/cd/small.txt"
+grep -q "not by growth (windows of 20 tau = 40 frames inside the run): 1; bonded again first 0, centres beyond [0-9.]* first 1, neither 0$" \
+  "$dir/cd/small.txt" || { echo "FAIL: the seeded dimer's end: $(tail -1 "$dir/cd/small.txt")"; exit 1; }
+for bad in "$dir/none" "$dir/cm x" "$dir/cm 2 0" "$dir/cm 2 x"; do
   rc=0; err=$("$scripts/capsid_small_clusters" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_small_clusters $bad: status $rc, $err"; exit 1; }
 done
