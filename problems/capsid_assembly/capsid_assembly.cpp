@@ -279,8 +279,11 @@ public:
         // At a step observe() has just taken, its census is the last one tallied.
         const bool observed = events_every_ > 0 && sim.step_index() % events_every_ == 0 && !previous_.bodies.empty();
         const BondCensus census = observed ? previous_ : site_bond_census(sim, rule_);
-        int dimers = 0;
-        for (const int n : census.cluster_size) dimers += n == 2;
+        // Clusters by members (entry n - 1; larger than a shell in the last): how many nuclei a
+        // run holds at each sample, which the mass fractions do not say.
+        std::vector<double> by_size(kShell, 0.0);
+        for (const int n : census.cluster_size) by_size[std::size_t(std::min(n, kShell) - 1)] += 1;
+        const int dimers = int(by_size[1]);
         const KineticParts k = sim.kinetic_parts();
         const double solvent_t = k.n_free > 0 ? 2 * k.free / (3.0 * double(k.n_free)) : 0;
         const double nb = double(std::max<long long>(1, k.n_bodies));
@@ -308,6 +311,9 @@ public:
                 {"closed_mass_fraction", {closed_mass / double(std::max<std::size_t>(1, census.bodies.size()))}},
                 {"largest_cluster", {double(last_largest_)}},
                 {"dimers", {double(dimers)}},
+                {"clusters_by_size", by_size},
+                // The shell's 3-fold ring on its own: three members, each bonded to both others.
+                {"closed_trimers", {double(census.complete_clusters(3, 2))}},
                 {"mass_fractions", census.mass_fractions(kGroups)},
                 {"yield", {double(last_shells_ * kShell) / double(std::max<std::int64_t>(1, n_capsomers_))}},
                 {"solvent_temperature", {solvent_t}},

@@ -127,6 +127,12 @@ for n, expected in ((2, 1), (3, 3), (59, 145)):
           f"clusters {m['clusters']:.0f}")
     if (m["largest_cluster"], m["bonds"], m["clusters"]) != (n, expected, 80 - n + 1):
         fail.append(f"the seeded cluster of {n} is not one cluster with {expected} bonds")
+    # By size: the seed and 80 - n monomers; the seeded trimer is fully bonded (a closed ring).
+    by_size = [0] * 60
+    by_size[0], by_size[n - 1] = 80 - n, 1
+    if m["clusters_by_size"] != by_size or m["closed_trimers"] != (1 if n == 3 else 0):
+        fail.append(f"the seeded cluster of {n}: clusters_by_size has {[(k + 1, v) for k, v in enumerate(m['clusters_by_size']) if v]}, "
+                    f"closed_trimers {m['closed_trimers']}")
 n_table1 = json.load(open(f"{d}/table1/summary.json"))["N"]
 print(f"table1 preset: {n_table1} particles")
 if n_table1 != 120875 + 4125 * 30:
