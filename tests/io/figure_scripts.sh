@@ -70,6 +70,27 @@ awk -F'|' '$2 + 0 == 400 && $3 + 0 == 60 && $5 + 0 >= 30 && $5 + $6 == 60 && $7 
   --set dt=0.02 --set steps=10000 --set sample_every=250 --set output.every=250 --set progress_interval=0 \
   -o "$dir/cm" >/dev/null
 "$scripts/capsid_small_clusters" "$dir/cm" 2 >"$dir/cm/small.txt"
+# Contacts, apart from the engine's census: the closed shell at the start has the note's 150 bonds
+# of four matched pairs, no partial contact, and the note's site attraction -1272.56 at e = 0.09
+# (notes/capsid-geometry.md 3.7); in the monomer run's last frame, a face pair with all four
+# pairs within r_b is exactly a census bond (as many as the frame's bonds per capsomer say, and
+# none between two census clusters).
+"$scripts/capsid_contacts" "$dir/cs" 0 >"$dir/cs/contacts.txt"
+grep -q "^| within census clusters | 0 | 0 | 0 | 150 |$" "$dir/cs/contacts.txt" \
+  && grep -q "^| between census clusters | 0 | 0 | 0 | 0 |$" "$dir/cs/contacts.txt" \
+  && grep -q "^site attraction (kT): within census clusters -1272.6, " "$dir/cs/contacts.txt" \
+  || { echo "FAIL: the shell's contacts: $(cat "$dir/cs/contacts.txt")"; exit 1; }
+"$scripts/capsid_contacts" "$dir/cm" >"$dir/cm/contacts.txt"
+/usr/bin/python3 - "$dir/cm" "$scripts" <<'PY'
+import sys
+sys.path.insert(0, sys.argv[2])
+from emergentpy import Run
+text = open(f"{sys.argv[1]}/contacts.txt").read()
+rows = {l.split("|")[1].strip(): [int(v) for v in l.split("|")[2:6]] for l in text.splitlines() if "census clusters |" in l}
+bonds = int(Run(sys.argv[1]).body_frames()[3][-1].sum()) // 2
+assert rows["within census clusters"][3] == bonds and bonds > 0, (rows, bonds)
+assert rows["between census clusters"][3] == 0, rows
+PY
 /usr/bin/python3 - "$dir/cm" "$scripts" <<'PY'
 import sys
 sys.path.insert(0, sys.argv[2])
@@ -120,6 +141,58 @@ PY
 for bad in "$dir/none" "$dir/cm x" "$dir/cm 2 0" "$dir/cm 2 x"; do
   rc=0; err=$("$scripts/capsid_small_clusters" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_small_clusters $bad: status $rc, $err"; exit 1; }
+done
+for bad in "$dir/none" "$dir/cm x" "$dir/cm 99" "$dir/cm 0 1"; do
+  rc=0; err=$("$scripts/capsid_contacts" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_contacts $bad: status $rc, $err"; exit 1; }
+done
+# Where new clusters come from, on body frames written here with a known history (10 capsomers
+# 1.5 apart on a line, clusters of 3+ counted, frames 0.5 tau apart): 0-4 are one cluster; 5 and
+# 6 meet as monomers at frame 2 and 7 joins them at 3 (new, from monomers); 3 and 4 leave the
+# cluster of 5 together at frame 4, after 4 frames together in it, and 8 joins them at 5 (new,
+# from a piece); at 6 all but 5-6-7 merge (not new) and at 7 the merger sheds 3-4-8 (new, a piece
+# of 3 of 7 at once) while 0-1-2-9 go on (not new); at 8 5-6-7 loses 7 and at 9 takes it back
+# (the same cluster back above 3: not new, counted apart).
+mkdir -p "$dir/no"
+/usr/bin/python3 - "$dir/no/trajectory.h5" <<'PY'
+import sys
+import h5py, numpy as np
+frames = [
+    [0, 0, 0, 0, 0, 5, 6, 7, 8, 9],
+    [0, 0, 0, 0, 0, 5, 6, 7, 8, 9],
+    [0, 0, 0, 0, 0, 5, 5, 7, 8, 9],
+    [0, 0, 0, 0, 0, 5, 5, 5, 8, 9],
+    [0, 0, 0, 3, 3, 5, 5, 5, 8, 9],
+    [0, 0, 0, 3, 3, 5, 5, 5, 3, 9],
+    [0, 0, 0, 0, 0, 5, 5, 5, 0, 0],
+    [0, 0, 0, 3, 3, 5, 5, 5, 3, 0],
+    [0, 0, 0, 3, 3, 5, 5, 7, 3, 0],
+    [0, 0, 0, 3, 3, 5, 5, 5, 3, 0],
+]
+with h5py.File(sys.argv[1], "w") as f:
+    g = f.create_group("particles/bodies")
+    g["box/edges/value"] = np.array([[20.0, 20.0, 20.0]])
+    g["cluster/step"] = np.arange(len(frames)) * 100
+    g["cluster/time"] = np.arange(len(frames)) * 0.5
+    g["bonds/step"] = np.arange(len(frames)) * 100
+    for k, c in enumerate(frames):
+        c = np.array(c)
+        name = f"{k:06d}"
+        g[f"frames/cluster/{name}"] = c
+        g[f"frames/cluster_size/{name}"] = np.array([np.sum(c == v) for v in c])
+        g[f"frames/bonds/{name}"] = np.zeros(len(c), int)
+        g[f"frames/id/{name}"] = np.arange(len(c))
+        g[f"frames/position/{name}"] = np.array([[1.5 * b, 0.0, 0.0] for b in range(len(c))])
+PY
+"$scripts/capsid_nucleus_origin" "$dir/no" 3 >"$dir/no/origin.txt"
+grep -q "^| 1.5 | 3 | monomers | 1 |  | 1.5 (6.0) | 3 |$" "$dir/no/origin.txt" \
+  && grep -q "^| 2.5 | 3 | piece | 2 | 2 of 5, 4 | 1.5 (2.2) | 3 |$" "$dir/no/origin.txt" \
+  && grep -q "^| 3.5 | 3 | piece | 3.5 | 3 of 7 | 1.5 (-) | 3 |$" "$dir/no/origin.txt" \
+  && grep -q "^new clusters of 3+: 3; from pieces 2, from monomers 1, there at the start 0; not counted: clusters back above 3 after dropping below it 1$" "$dir/no/origin.txt" \
+  || { echo "FAIL: capsid_nucleus_origin on a known history: $(cat "$dir/no/origin.txt")"; exit 1; }
+for bad in "$dir/none" "$dir/no x" "$dir/no 2"; do
+  rc=0; err=$("$scripts/capsid_nucleus_origin" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_nucleus_origin $bad: status $rc, $err"; exit 1; }
 done
 # The PW capsomer's closed cages, apart from the engine: its log's numbers, which the engine's
 # closed_cage() is compared with in physics_capsomer (benchmarks/logs/capsid_polymorphs_2026-12-04.log).
