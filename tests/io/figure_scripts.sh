@@ -185,8 +185,8 @@ with h5py.File(sys.argv[1], "w") as f:
         g[f"frames/position/{name}"] = np.array([[1.5 * b, 0.0, 0.0] for b in range(len(c))])
 PY
 "$scripts/capsid_nucleus_origin" "$dir/no" 3 >"$dir/no/origin.txt"
-grep -q "^| 1.5 | 3 | monomers | 1 |  | 1.5 (6.0) | 3 |$" "$dir/no/origin.txt" \
-  && grep -q "^| 2.5 | 3 | piece | 2 | 2 of 5, 4 | 1.5 (2.2) | 3 |$" "$dir/no/origin.txt" \
+grep -q "^| 1.5 | 3 | monomers | 1 |  | 1.5 (0.00) | 3 |$" "$dir/no/origin.txt" \
+  && grep -q "^| 2.5 | 3 | piece | 2 | 2 of 5, 4 | 1.5 (0.50) | 3 |$" "$dir/no/origin.txt" \
   && grep -q "^| 3.5 | 3 | piece | 3.5 | 3 of 7 | 1.5 (-) | 3 |$" "$dir/no/origin.txt" \
   && grep -q "^new clusters of 3+: 3; from pieces 2, from monomers 1, there at the start 0; not counted: clusters back above 3 after dropping below it 1$" "$dir/no/origin.txt" \
   || { echo "FAIL: capsid_nucleus_origin on a known history: $(cat "$dir/no/origin.txt")"; exit 1; }
