@@ -103,12 +103,20 @@ for run in sys.argv[1:]:
     t, m = series(run, "mass_fractions")
     _, big = series(run, "largest_cluster")
     _, shells = series(run, "complete_shells")
+    # Clusters of 6+ at each sample, where the run counted them (clusters_by_size; older runs did not).
+    try:
+        tn, by_size = series(run, "clusters_by_size")
+        nuclei = dict(zip(np.round(tn, 6), by_size[:, 5:].sum(axis=1)))
+    except KeyError:
+        nuclei = {}
     print(f"## {run}: {len(t)} samples to t = {t[-1]:.0f} tau")
-    print("| t (tau) | monomers | 2-5 | 6-50 | 51-59 | 60 | largest | shells |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| t (tau) | monomers | 2-5 | 6-50 | 51-59 | 60 | largest | shells | clusters of 6+ |")
+    print("|---|---|---|---|---|---|---|---|---|")
     picks = sorted(set([int(round(k * (len(t) - 1) / 10)) for k in range(11)]))
     for k in picks:
-        print(f"| {t[k]:.0f} | " + " | ".join(f"{x:.3f}" for x in m[k]) + f" | {big[k, 0]:.0f} | {shells[k, 0]:.0f} |")
+        n6 = nuclei.get(round(t[k], 6))
+        print(f"| {t[k]:.0f} | " + " | ".join(f"{x:.3f}" for x in m[k]) + f" | {big[k, 0]:.0f} | {shells[k, 0]:.0f} | "
+              + ("-" if n6 is None else f"{n6:.0f}") + " |")
     six = m[:, 2:].sum(axis=1)
     lag = f"{t[np.argmax(six > 0)]:.0f} tau" if (six > 0).any() else "none yet"
     first_shell = f"{t[np.argmax(shells[:, 0] > 0)]:.0f} tau" if (shells[:, 0] > 0).any() else "none yet"

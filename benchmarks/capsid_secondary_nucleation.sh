@@ -4,7 +4,9 @@
 # and then 6-10 more appeared within 10000 tau (benchmarks/logs/capsid_rows0_e0.115_*.log). This
 # runs the same solution with one compact patch of the shell seeded in it (start=cluster) and
 # writes body frames every FRAMES steps, so that scripts/capsid_nucleus_origin can say where each
-# new cluster of 6 or more came from: pieces that left another cluster, or monomers meeting.
+# new cluster of 6 or more came from: pieces that left another cluster, or monomers meeting
+# (scripts/capsid_nucleus_origin), and what holds the clusters together at the end
+# (scripts/capsid_contacts).
 # usage: benchmarks/capsid_secondary_nucleation.sh OUT [SEEDS...]   (default seeds 31 32 33 34)
 #   E (0.115), PATCH (20 members), TAU (8000 per run), DT (0.02, with skin 1.4: the faster step of
 #   the implicit solvent, benchmarks/RESULTS.md "A longer step in the implicit solvent"),
@@ -29,9 +31,18 @@ for seed in $seeds; do
       --set particle_fraction="${PARTICLE_FRACTION:-0.033}" --set solvent=implicit --set start=cluster \
       --set cluster_size="$patch" --set attraction="$e" --set seed="$seed" --set dt="$dt" --set skin=1.4 \
       --set steps="$steps" --set sample_every="$(steps_for 50 "$dt")" --set events_every=12 \
-      --set output.every="$frames" --set output.elements= --set checkpoint_every=0 \
+      --set output.every="$frames" --set output.elements= --set checkpoint_every="$steps" \
       --set progress_interval=0 -o "$run" >/dev/null
   fi
   echo "## seed $seed"
   scripts/capsid_nucleus_origin "$run"
+  # The last state with every particle (the frames above carry the bodies only), one step on
+  # from the final checkpoint, for the contacts that hold the clusters together.
+  if [ -f "$run/checkpoint.h5" ] && [ ! -f "$run/last/summary.json" ]; then
+    mkdir -p "$run/last"
+    cp "$run/checkpoint.h5" "$run/last/start.h5"
+    "$exe" run --restart "$run/last/start.h5" --set steps=$((steps + 1)) --set output.every=0 \
+      --set output.elements=position,species,id --set checkpoint_every=0 --set progress_interval=0 -o "$run/last" >/dev/null
+  fi
+  [ -f "$run/last/summary.json" ] && scripts/capsid_contacts "$run/last"
 done
