@@ -10,8 +10,9 @@
 # usage: benchmarks/capsid_secondary_nucleation.sh OUT [SEEDS...]   (default seeds 31 32 33 34)
 #   E (0.115), PATCH (20 members), TAU (8000 per run), DT (0.02, with skin 1.4: the faster step of
 #   the implicit solvent, benchmarks/RESULTS.md "A longer step in the implicit solvent"),
-#   FRAMES (250 steps = 5 tau), CAPSOMERS (300), PARTICLE_FRACTION (0.033) override. Runs
-#   already complete in OUT are kept; the table goes to stdout.
+#   FRAMES (250 steps = 5 tau), CAPSOMERS (300), PARTICLE_FRACTION (0.033) override; SET="key=value
+#   ..." adds scene settings after the rows' (e.g. SET="site_depth_outer=0.25"). Runs already
+#   complete in OUT are kept; the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 1 ] || { echo "usage: $0 OUT [SEEDS...]" >&2; exit 2; }
@@ -21,8 +22,10 @@ seeds=${*:-31 32 33 34}
 . benchmarks/common.sh
 e=${E:-0.115} patch=${PATCH:-20} tau=${TAU:-8000} dt=${DT:-0.02} frames=${FRAMES:-250}
 steps=$(steps_for "$tau" "$dt")
+extra=()
+for kv in ${SET:-}; do extra+=(--set "$kv"); done
 mkdir -p "$out"
-echo "# capsid_secondary_nucleation.sh: e $e, a seeded patch of $patch among ${CAPSOMERS:-300} capsomers, p ${PARTICLE_FRACTION:-0.033}, implicit, rows 0 and 1.2; $tau tau at dt $dt, body frames every $frames steps; seeds $seeds; $(run_stamp)"
+echo "# capsid_secondary_nucleation.sh: e $e, a seeded patch of $patch among ${CAPSOMERS:-300} capsomers, p ${PARTICLE_FRACTION:-0.033}, implicit, rows 0 and 1.2${SET:+, $SET}; $tau tau at dt $dt, body frames every $frames steps; seeds $seeds; $(run_stamp)"
 commit_line
 for seed in $seeds; do
   run="$out/seed$seed"
@@ -32,7 +35,7 @@ for seed in $seeds; do
       --set cluster_size="$patch" --set attraction="$e" --set seed="$seed" --set dt="$dt" --set skin=1.4 \
       --set steps="$steps" --set sample_every="$(steps_for 50 "$dt")" --set events_every=12 \
       --set output.every="$frames" --set output.elements= --set checkpoint_every="$steps" \
-      --set progress_interval=0 -o "$run" >/dev/null
+      --set progress_interval=0 "${extra[@]}" -o "$run" >/dev/null
   fi
   echo "## seed $seed"
   scripts/capsid_nucleus_origin "$run"
