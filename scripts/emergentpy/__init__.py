@@ -146,41 +146,38 @@ class Run:
         """The trajectory files of this directory: the original and continued runs."""
         return list(self.trajectory_paths)
 
+    def _census_body_frames(self):
+        """Per segment holding bodies with bond census values: (open group particles/bodies,
+        its frame names in order). The file stays open while the caller reads it."""
+        for path in self.trajectory_paths:
+            with h5py.File(path, "r") as f:
+                if "particles/bodies" in f and "bonds" in f["particles/bodies"]:
+                    g = f["particles/bodies"]
+                    yield g, sorted(g["frames/cluster"].keys(), key=int)
+
     def body_frames(self):
         """The rigid bodies' frames that carry bond census values (capsid-assembly's `cluster`,
         `cluster_size`, `bonds`), over the run's segments, bodies ordered by id: (steps,
         cluster, size, bonds, centres, box edges), arrays indexed [frame, body]; their times are
         body_frame_times()."""
         steps, cluster, size, bonds, centres, edges = [], [], [], [], [], None
-        for path in self.trajectory_paths:
-            with h5py.File(path, "r") as f:
-                if "particles/bodies" not in f or "bonds" not in f["particles/bodies"]:
-                    continue
-                g = f["particles/bodies"]
-                fr = g["frames"]
-                for k in sorted(fr["cluster"].keys(), key=int):
-                    order = np.argsort(fr["id"][k][:])
-                    steps.append(int(g["cluster/step"][int(k)]))
-                    cluster.append(fr["cluster"][k][:][order])
-                    size.append(fr["cluster_size"][k][:][order])
-                    bonds.append(fr["bonds"][k][:][order])
-                    centres.append(fr["position"][k][:][order])
-                e = np.asarray(g["box/edges/value"][0], float)
-                edges = np.diag(e) if e.ndim == 2 else e
+        for g, keys in self._census_body_frames():
+            fr = g["frames"]
+            for k in keys:
+                order = np.argsort(fr["id"][k][:])
+                steps.append(int(g["cluster/step"][int(k)]))
+                cluster.append(fr["cluster"][k][:][order])
+                size.append(fr["cluster_size"][k][:][order])
+                bonds.append(fr["bonds"][k][:][order])
+                centres.append(fr["position"][k][:][order])
+            e = np.asarray(g["box/edges/value"][0], float)
+            edges = np.diag(e) if e.ndim == 2 else e
         return (np.array(steps, int), np.array(cluster), np.array(size), np.array(bonds).astype(int),
                 np.array(centres), edges)
 
     def body_frame_times(self):
         """The times of body_frames() (H5MD's, right across a change of dt)."""
-        times = []
-        for path in self.trajectory_paths:
-            with h5py.File(path, "r") as f:
-                if "particles/bodies" not in f or "bonds" not in f["particles/bodies"]:
-                    continue
-                g = f["particles/bodies"]
-                keys = sorted(g["frames/cluster"].keys(), key=int)
-                times += [float(g["cluster/time"][int(k)]) for k in keys]
-        return np.array(times)
+        return np.array([float(g["cluster/time"][int(k)]) for g, keys in self._census_body_frames() for k in keys])
 
 
 def cosine_modes(profiles, modes):
