@@ -20,6 +20,10 @@
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
 #       complete shell, the last sample; and P_n = g / (g + l) by size from the tallies at the
 #       last sample (since the events interval was last set), at the interval and twice it.
+#   benchmarks/capsid_assembly_long.sh at TIME RUN_DIR...   one row per run at its last sample at
+#       or before TIME tau: e, seed, mass fractions, largest, shells, clusters of 6+, the lag and the
+#       first shell by then (Table 1 at equal run length); runs that have not reached TIME are
+#       named below the table, and the exit status is then 3.
 #   benchmarks/capsid_assembly_long.sh window RUN_DIR STEPS  copies RUN_DIR's checkpoint to
 #       RUN_DIR/window<STEP> and continues it STEPS steps with censuses every WINDOW_EVENTS (25)
 #       steps: the same table over a short stretch at a finer interval (a continuation at another
@@ -132,6 +136,42 @@ for run in sys.argv[1:]:
     step_table(tally, interval, dt)
 PY
   ;;
+at)
+  [ $# -ge 2 ] || { echo "usage: $0 at TIME RUN_DIR..." >&2; exit 2; }
+  case $1 in ''|*[!0-9.]*|*.*.*) echo "$0: TIME='$1' must be a non-negative number of tau" >&2; exit 2 ;; esac
+  /usr/bin/python3 - "$@" <<PY
+import sys
+$series_py
+at, runs = float(sys.argv[1]), sys.argv[2:]
+print(f"# every run at its last sample at or before t = {at:g} tau (runs of equal length: Table 1's comparison)")
+print("| e | seed | t (tau) | monomers | 2-5 | 6-50 | 51-59 | 60 | largest | shells | clusters of 6+ | lag (tau) | first shell (tau) |")
+print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+short = []
+for run in runs:
+    parameters = Run(run).parameters()
+    e, seed = float(parameters["attraction"]), int(parameters["seed"])
+    t, m = series(run, "mass_fractions")
+    if t[-1] < at - 1e-6:
+        short.append(f"{run} (to {t[-1]:.0f} tau)")
+        continue
+    k = int(np.searchsorted(t, at + 1e-6)) - 1
+    _, big = series(run, "largest_cluster")
+    _, shells = series(run, "complete_shells")
+    try:
+        tn, by_size = series(run, "clusters_by_size")
+        n6 = f"{by_size[int(np.searchsorted(tn, t[k] + 1e-6)) - 1, 5:].sum():.0f}"
+    except KeyError:
+        n6 = "-"
+    six = m[: k + 1, 2:].sum(axis=1)
+    lag = f"{t[np.argmax(six > 0)]:.0f}" if (six > 0).any() else "-"
+    first = f"{t[np.argmax(shells[: k + 1, 0] > 0)]:.0f}" if (shells[: k + 1, 0] > 0).any() else "-"
+    print(f"| {e:g} | {seed} | {t[k]:.0f} | " + " | ".join(f"{x:.3f}" for x in m[k])
+          + f" | {big[k, 0]:.0f} | {shells[k, 0]:.0f} | {n6} | {lag} | {first} |")
+for s in short:
+    print(f"# not reached: {s}")
+sys.exit(3 if short else 0)
+PY
+  ;;
 window)
   [ $# -eq 2 ] || { echo "usage: $0 window RUN_DIR STEPS" >&2; exit 2; }
   run=$1 steps=$2 events=${WINDOW_EVENTS:-25}
@@ -167,7 +207,7 @@ piece_table(m, events, dt, steps * dt)
 PY
   ;;
 *)
-  echo "usage: $0 run|table|window ... (see the script's head)" >&2
+  echo "usage: $0 run|table|at|window ... (see the script's head)" >&2
   exit 2
   ;;
 esac
