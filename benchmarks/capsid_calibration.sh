@@ -7,8 +7,9 @@
 # (sampled every 1000, same scaling) as a steadier estimate.
 # usage: benchmarks/capsid_calibration.sh [CAPSOMERS] [JOBS] [OUT]
 #        (defaults 594 = 4752/8, 2, benchmarks/logs/capsid_calibration); E_VALUES and SEEDS
-#        (space-separated) override "0.08 0.09 0.10 0.11" and "1 2 3". Runs already complete in
-#        OUT are kept; the table goes to stdout (save it as the log).
+#        (space-separated) override "0.08 0.09 0.10 0.11" and "1 2 3"; SET="key=value ..." adds
+#        scene settings (e.g. SET="site_depth_outer=0.25", another site row). Runs already
+#        complete in OUT are kept; the table goes to stdout (save it as the log).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 capsomers=${1:-594}
@@ -20,12 +21,14 @@ case $jobs in ''|*[!0-9]*|0) echo "capsid_calibration.sh: JOBS='$jobs' must be a
 mkdir -p "$out"
 e_values=${E_VALUES:-"0.08 0.09 0.10 0.11"}
 seeds=${SEEDS:-"1 2 3"}
-echo "# capsid_calibration.sh $capsomers capsomers, $jobs jobs; $(run_stamp)"
+extra=()
+for kv in ${SET:-}; do extra+=(--set "$kv"); done
+echo "# capsid_calibration.sh $capsomers capsomers, $jobs jobs${SET:+; SET=\"$SET\"}; $(run_stamp)"
 commit_line
 one() {
   local e=$1 seed=$2 dir="$out/e${1}_seed$2"
   [ -f "$dir/summary.json" ] && return 0
-  "$exe" run capsid-assembly --set capsomers="$capsomers" --set attraction="$e" --set seed="$seed" \
+  "$exe" run capsid-assembly "${extra[@]}" --set capsomers="$capsomers" --set attraction="$e" --set seed="$seed" \
     --set start=monomers --set steps=50000 --set sample_every=1000 --set progress_interval=0 \
     -o "$dir" >/dev/null
 }
