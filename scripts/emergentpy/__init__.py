@@ -175,6 +175,32 @@ class Run:
         return (np.array(steps, int), np.array(cluster), np.array(size), np.array(bonds).astype(int),
                 np.array(centres), edges)
 
+    def census_particle_frame(self, index=-1):
+        """One frame holding both the particles and the bodies' bond census (capsid-assembly):
+        (step, time, particle positions, species, body cluster ids, cluster sizes, box lengths),
+        particles and bodies each in id order. index counts those frames over the segments
+        (-1: the last). Raises ValueError when there is none or index is out of range."""
+        frames = []
+        for path in self.trajectory_paths:
+            with h5py.File(path, "r") as f:
+                if "particles/bodies/frames/cluster" not in f or "position" not in f["particles/all/frames"]:
+                    continue
+                keys = sorted(f["particles/bodies/frames/cluster"].keys(), key=int)
+                frames += [(path, k) for k in keys if k in f["particles/all/frames/position"]]
+        if not frames:
+            raise ValueError(f"{self.directory} holds no particle frame with body cluster ids")
+        if not -len(frames) <= index < len(frames):
+            raise ValueError(f"frame {index} out of range ({len(frames)} frames)")
+        path, k = frames[index]
+        with h5py.File(path, "r") as f:
+            p, b = f["particles/all/frames"], f["particles/bodies/frames"]
+            order, border = np.argsort(p["id"][k][:]), np.argsort(b["id"][k][:])
+            edges = np.asarray(f["particles/all/box/edges/value"][-1], float)
+            step = int(f["particles/bodies/cluster/step"][int(k)])
+            time = float(f["particles/bodies/cluster/time"][int(k)])
+            return (step, time, p["position"][k][:][order], p["species"][k][:][order], b["cluster"][k][:][border],
+                    b["cluster_size"][k][:][border], edges.diagonal() if edges.ndim == 2 else edges)
+
     def body_frame_times(self):
         """The times of body_frames() (H5MD's, right across a change of dt)."""
         return np.array([float(g["cluster/time"][int(k)]) for g, keys in self._census_body_frames() for k in keys])

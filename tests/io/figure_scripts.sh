@@ -56,6 +56,16 @@ for bad in "$dir/none" "$dir/cs x" "$dir/cs 6 99"; do  # bad input: one line, st
   rc=0; err=$("$scripts/capsid_cages" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_cages $bad: status $rc, $err"; exit 1; }
 done
+# The shell drawn whole, monomers hidden: one cluster of 60 with 5 bonds per member, its members'
+# centres (means of their spheres) at the design's centre radius within the cages' 1 %.
+"$scripts/plot_capsid_clusters" "$dir/cs/clusters.png" "$dir/cs" >"$dir/cs/clusters.txt"
+awk -F'|' 'NF > 3 && $2 + 0 > 0 {rows++; if ($2 + 0 == 60 && $3 + 0 == 5 && ($4 - 4.215747) ^ 2 < 0.04 ^ 2) found = 1}
+  END {exit !(found && rows == 1)}' "$dir/cs/clusters.txt" \
+  || { echo "FAIL: the shell drawn: $(cat "$dir/cs/clusters.txt")"; exit 1; }
+for bad in "$dir/none" "$dir/cs x" "$dir/cs 99"; do  # bad input: one line, status 1
+  rc=0; err=$("$scripts/plot_capsid_clusters" "$dir/cs/bad.png" $bad 2>&1 >/dev/null) || rc=$?
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: plot_capsid_clusters $bad: status $rc, $err"; exit 1; }
+done
 # Each member of the shell predicts the same shell centre: exactly at the start; after 2 tau at
 # e = 0.09 every member within 1.5 of it and most within 0.5 (perfect patches at e = 0.1225 keep
 # ~75 % within 0.5, benchmarks/logs/capsid_shell_register_2026-12-05.log).
@@ -224,7 +234,7 @@ done
 "$scripts/plot_capsid_table1" "$dir/cs/table1.png" "$scripts/../benchmarks/logs/capsid_table1_2026-12-03.log" >"$dir/cs/table1.txt"
 grep -q "^e 0.15, 0.4e6 steps, 2 seed(s): 1 0.408, 2-50 0.592, 51-59 0.000, 60 0.000$" "$dir/cs/table1.txt" \
   || { echo "FAIL: Table 1's averages: $(cat "$dir/cs/table1.txt")"; exit 1; }
-for png in "$dir/cs/mass.png" "$dir/cs/table1.png" "$dir/cm/table1.png" "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
+for png in "$dir/cs/mass.png" "$dir/cs/table1.png" "$dir/cm/table1.png" "$dir/cs/clusters.png" "$dir/vs/fig-spacetime.png" "$dir/vs/fig-profile.png" "$dir/vs/fig-views.png" "$dir/vs/seeds.png" \
            "$dir/rd/fig-spacetime.png" "$dir/rd/fig-segregation.png" "$dir/rd/fig-snapshot.png" \
            "$dir/obs.png" "$dir/rho.png" "$dir/tc/fig-rolls.png" "$dir/tc/fig-radial-velocity.png" \
            "$dir/tc/fig-vortices.png" "$dir/rb/fig-cells.png" "$dir/rb/fig-cell-count.png" \
