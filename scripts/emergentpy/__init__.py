@@ -177,8 +177,8 @@ class Run:
 
     def census_particle_frame(self, index=-1):
         """One frame holding both the particles and the bodies' bond census (capsid-assembly):
-        (step, time, particle positions, species, body cluster ids, cluster sizes, box lengths),
-        particles and bodies each in id order. index counts those frames over the segments
+        (step, time, particle positions, species, body cluster ids, cluster sizes, box lengths,
+        bonds per body), particles and bodies each in id order. index counts those frames over the segments
         (-1: the last). Raises ValueError when there is none or index is out of range."""
         frames = []
         for path in self.trajectory_paths:
@@ -199,7 +199,8 @@ class Run:
             step = int(f["particles/bodies/cluster/step"][int(k)])
             time = float(f["particles/bodies/cluster/time"][int(k)])
             return (step, time, p["position"][k][:][order], p["species"][k][:][order], b["cluster"][k][:][border],
-                    b["cluster_size"][k][:][border], edges.diagonal() if edges.ndim == 2 else edges)
+                    b["cluster_size"][k][:][border], edges.diagonal() if edges.ndim == 2 else edges,
+                    b["bonds"][k][:][border].astype(int))
 
     def body_frame_times(self):
         """The times of body_frames() (H5MD's, right across a change of dt)."""
