@@ -6,7 +6,8 @@
 # members each start lost.
 # usage: benchmarks/capsid_hysteresis.sh [ATTRACTION] [OUT]   (defaults: the preset's, and
 #        benchmarks/logs/capsid_hysteresis); SEEDS (space-separated) overrides "5 6 7 8", STEPS the
-#        preset's steps. Runs already complete in OUT are kept; the table goes to stdout.
+#        preset's steps, SET="key=value ..." adds scene settings (e.g. SET="site_depth_outer=0.5",
+#        the note's rows). Runs already complete in OUT are kept; the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 e=${1:-}
@@ -17,7 +18,8 @@ seeds=${SEEDS:-"5 6 7 8"}
 extra=()
 [ -n "$e" ] && extra+=(--set attraction="$e")
 [ -n "${STEPS:-}" ] && extra+=(--set steps="$STEPS")
-echo "# capsid_hysteresis.sh ${e:-(preset attraction)} ${STEPS:-(preset steps)}; $(run_stamp)"
+for kv in ${SET:-}; do extra+=(--set "$kv"); done
+echo "# capsid_hysteresis.sh ${e:-(preset attraction)} ${STEPS:-(preset steps)}${SET:+; SET=\"$SET\"}; $(run_stamp)"
 commit_line
 for seed in $seeds; do
   for start in shell open_shell; do

@@ -33,6 +33,9 @@ struct ParamSpec {
     bool min_exclusive = false;  ///< true: value must be > min rather than >= min
     std::vector<std::string> choices;
     RestartRule restart = RestartRule::Unmarked;
+    /// The value runs had built in before this parameter existed ("": its default): what a
+    /// checkpoint written then continues with, where a later default differs.
+    std::string earlier_value;
 
     /// Throws InputError naming `scene` and this parameter if `value` is not acceptable.
     void validate(const std::string& scene, const std::string& value) const;
@@ -55,6 +58,9 @@ public:
     /// Marks parameters (already added) for continued runs: see RestartRule.
     Schema& structural(std::initializer_list<const char*> names);
     Schema& adjustable(std::initializer_list<const char*> names);
+    /// Records the value `name` had in effect before it became a parameter (see
+    /// ParamSpec::earlier_value), for a default that changes after checkpoints without it exist.
+    Schema& earlier_value(const std::string& name, const std::string& value);
 
     const ParamSpec* find(const std::string& name) const;
     const std::vector<ParamSpec>& params() const { return params_; }

@@ -15,7 +15,7 @@
 #include "emergent/simulation.hpp"
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it).
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-28"  // 28: ClusterEvents split, pieces, merged, assembled; 27: SiteDepths, Capsomer::site_depths, cage_frame, cage_rotations, closed_cage, PhaseTimes::collective_wait_after_build; 26: exec::Then returns its second functor's result, PhaseTimes::collective_wait, ForceContext::replace_forces, ForceTerm::stores_on_backend, BondCensus::closed_cluster_sizes; 25: exec::check_launch names the functor, the device profile, ParticleStore deferred resize, RunSettings::interior_order (24: Problem::observe_every/observe; 23: ForceTerm::pair_ranges; 22: ph_capsomer;
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-29"  // 29: ParamSpec::earlier_value, Schema::earlier_value; 28: ClusterEvents split, pieces, merged, assembled; 27: SiteDepths, Capsomer::site_depths, cage_frame, cage_rotations, closed_cage, PhaseTimes::collective_wait_after_build; 26: exec::Then returns its second functor's result, PhaseTimes::collective_wait, ForceContext::replace_forces, ForceTerm::stores_on_backend, BondCensus::closed_cluster_sizes; 25: exec::check_launch names the functor, the device profile, ParticleStore deferred resize, RunSettings::interior_order (24: Problem::observe_every/observe; 23: ForceTerm::pair_ranges; 22: ph_capsomer;
                                                  //    21: with Capsomer::shape;
                                                  //    19: load balance (RunSettings::balance,
                                                  //    Simulation::domain_cuts); 18: Problem::body_frame_values

@@ -534,6 +534,8 @@ ProblemInfo capsid_assembly_info() {
                  "steps between the cluster censuses of the growth and loss tallies (0: at the "
                  "samples): a fine interval without writing samples; a continuation at another "
                  "interval starts the tallies afresh");
+    // Checkpoints from before the site rows were parameters had the note's outer row.
+    info.schema.earlier_value("site_depth_outer", "0.5");
     info.schema.structural({"capsomers", "particle_fraction", "density", "shape", "edge",
                             "site_depth_outer", "site_depth_inner", "mass_ratio",
                             "attraction_range", "harmonic_range", "start", "solvent", "cluster_size"})

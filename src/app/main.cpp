@@ -101,6 +101,7 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
     }
     if (scene.empty()) throw InputError("run: no scene given (see: emergent list)");
     req.problem = &find_scene(scene);
+    if (req.restart) app::add_earlier_values(*req.problem, checkpoint.config);
     if (vm.count("checkpoint-every"))
         sets.push_back("checkpoint_every=" + std::to_string(vm["checkpoint-every"].as<long long>()));
     // A continued run starts from the checkpoint's parameters; --config and --set change them.

@@ -26,4 +26,9 @@ std::string restart_changes(const ProblemInfo& info,
     return changed.empty() ? "" : "continuing with changed parameters: " + changed;
 }
 
+void add_earlier_values(const ProblemInfo& info, std::map<std::string, std::string>& saved) {
+    for (const ParamSpec& p : info.schema.params())
+        if (!p.earlier_value.empty()) saved.emplace(p.name, p.earlier_value);
+}
+
 }  // namespace emergent::app

@@ -17,4 +17,9 @@ namespace emergent::app {
 std::string restart_changes(const ProblemInfo& info,
                             const std::map<std::string, std::string>& saved, const Config& now);
 
+/// Adds to a checkpoint's parameters those it predates that record an earlier value
+/// (ParamSpec::earlier_value): the run continues as it was built, not with a later default,
+/// and a new value is refused like any structural change.
+void add_earlier_values(const ProblemInfo& info, std::map<std::string, std::string>& saved);
+
 }  // namespace emergent::app

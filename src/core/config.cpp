@@ -167,6 +167,16 @@ Schema& Schema::set_default(const std::string& name, const std::string& def) {
     throw std::logic_error("set_default: no parameter " + name);
 }
 
+Schema& Schema::earlier_value(const std::string& name, const std::string& value) {
+    for (auto& p : params_)
+        if (p.name == name) {
+            p.validate("earlier_value", value);
+            p.earlier_value = value;
+            return *this;
+        }
+    throw std::logic_error("earlier_value: no parameter " + name);
+}
+
 namespace {
 void mark(std::vector<ParamSpec>& params, std::initializer_list<const char*> names, RestartRule rule) {
     for (const char* name : names) {

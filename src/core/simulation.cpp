@@ -8,6 +8,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "decomposition/exact_sum.hpp"
 #include "decomposition/halo_exchange.hpp"
@@ -76,6 +77,10 @@ struct Simulation::Engine {
     unsigned particle_fields = kPosition;  ///< what the force terms read of owned particles
     long long n_global = 0, step = 0, rebuilds = 0;
     bool moved_since_build = true;  ///< a drift since the last list build
+    /// Set by a restore for its one build: the saved list-reference positions by id (sorted).
+    /// Bodies' spheres are binned there, where the run's last build binned them, rather than
+    /// at their bodies' current poses, so the list and the force sums' order are the run's.
+    std::vector<std::pair<std::int64_t, Vec3>> restored_reference;
     bool built_this_step = false;   ///< the list was rebuilt within the current step
     /// The largest squared displacement since the last build, taken in the last drift's pass
     /// (kick_drift), for the rebuild test that follows it.
@@ -420,6 +425,17 @@ struct Simulation::Engine {
             if (bodies()) rigid.migrate(*grid);
         }
         if (bodies()) rigid.append_constituents(store);
+        if (!restored_reference.empty()) {
+            for (std::size_t i = 0; i < store.n_owned(); ++i) {
+                if (is_free(i)) continue;
+                const auto it = std::lower_bound(
+                    restored_reference.begin(), restored_reference.end(), std::make_pair(store.id[i], Vec3{}),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+                // A sphere whose saved copy went to another rank is binned at its body's pose.
+                if (it != restored_reference.end() && it->first == store.id[i]) store.position[i] = it->second;
+            }
+            std::vector<std::pair<std::int64_t, Vec3>>().swap(restored_reference);
+        }
         // Cell order gives the force loop neighbours that sit close in memory.
         cells.sort_order(store.position.data(), store.id.data(), store.n_owned(), order);
         if (interior_first) order_interior_first();
@@ -1141,7 +1157,14 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     Engine& e = *engine_;
     if (e.bodies() != (bodies != nullptr))
         throw InputError("restore: the saved state and this scene disagree about rigid bodies");
+    // The bodies' saved poses by id: the build below moves a body that left the box since the
+    // run's last build back into it, which that run had not done yet.
+    std::vector<std::pair<std::int64_t, std::pair<Vec3, Int3>>> saved_bodies;
     if (bodies) {
+        for (std::size_t b = 0; b < bodies->n_owned(); ++b)
+            saved_bodies.push_back({bodies->id[b], {bodies->position[b], bodies->image[b]}});
+        std::sort(saved_bodies.begin(), saved_bodies.end(),
+                  [](const auto& a, const auto& b) { return a.first < b.first; });
         e.rigid.store() = std::move(*bodies);
         e.bodies_host_wrote(Engine::kBodyFields);
         if (!owned.has_rigid_fields()) owned.enable_rigid_fields();
@@ -1161,7 +1184,36 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     ParticleStore& s = e.store;
     e.prepare();
     e.place_body_frames();
+    if (bodies) {
+        e.restored_reference.resize(by_id.size());
+        for (std::size_t k = 0; k < by_id.size(); ++k)
+            e.restored_reference[k] = {by_id[k].first, reference[by_id[k].second]};
+    }
     e.rebuild();
+    if (bodies) {
+        // Each body where the saved state had it (unwrapped, with its image), and its spheres
+        // placed from that pose: the run's positions, bit for bit.
+        ParticleStore& b = e.rigid.store();
+        std::unordered_map<std::int64_t, Int3> image_of;
+        for (std::size_t k = 0; k < b.n_owned(); ++k) {
+            const auto it = std::lower_bound(saved_bodies.begin(), saved_bodies.end(),
+                                             std::make_pair(b.id[k], std::pair<Vec3, Int3>{}),
+                                             [](const auto& x, const auto& y) { return x.first < y.first; });
+            if (it != saved_bodies.end() && it->first == b.id[k]) {
+                b.position[k] = it->second.first;
+                b.image[k] = it->second.second;
+            }
+            image_of[b.id[k]] = b.image[k];
+        }
+        e.bodies_host_wrote(kPosition | kImage);
+        for (std::size_t i = 0; i < s.n_owned(); ++i)
+            if (!e.is_free(i)) s.image[i] = image_of.at(s.body[i]);
+        const auto& first = e.rigid.constituent_first();
+        const auto& index = e.rigid.constituent_index();
+        e.rigid.place_at(exec::Target{}, e.rigid.host_arrays(), rigid::ConstituentIndex{first.data(), index.data()},
+                         s.position.data(), s.velocity.data());
+        e.host_wrote(kPosition | kVelocity | kImage);
+    }
     // Where particle `id` was in the saved state on this rank, or npos: a body's spheres are
     // placed by the rank that owns the body, which need not be the rank their saved copies
     // were dealt to.
