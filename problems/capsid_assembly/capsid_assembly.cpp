@@ -497,14 +497,22 @@ ProblemInfo capsid_assembly_info() {
         .real("edge", 0, 0, 10, "sigma",
               "pw: the short edge a; ph: the long edge; 0: the shape's own (2.1, 3.6); refused "
               "where spheres of neighbours in the shell would overlap (below ~1.9 for either)")
-        .real("site_depth_outer", 0.5, 0, 1.7, "sigma",
-              "depth below the outer face of each contact's outer row of attraction sites (the "
-              "note's design: 0.5, the outer sphere layer)")
+        // 0.25, not the note's 0.5: with the note's rows the capsomers close into cages of 24
+        // and no shell grows from monomers; at 0.25 shells do (benchmarks/RESULTS.md, "Table 1
+        // with the outer row 0.25 deep"), and at 0 hinges about the outer row glue clusters
+        // together ("The outer row's depth sets the hinges").
+        .real("site_depth_outer", 0.25, 0, 1.7, "sigma",
+              "depth below the outer face of each contact's outer row of attraction sites (0.25: "
+              "shells grow from monomers; the note's design, 0.5 at the outer sphere layer, "
+              "closes into cages of 24 instead)")
         .real("site_depth_inner", 1.2, 0, 1.7, "sigma",
               "depth of the inner row (the note's: 1.2, the inner sphere layer); rows farther "
               "apart resist bending a contact, which the 24-member cage needs")
         .real("mass_ratio", 15, 0, 1e6, "m", "capsomer mass / solvent atom mass", true)
-        .real("attraction", 0.09, 0, 10, "epsilon", "attraction strength e of the site pairs (eq. 6)")
+        // Calibrated against the paper's 8 dimers among 4752 capsomers at e = 0.09 after 5e4
+        // steps: with the default rows, 7.2 +- 1.7 at 0.105 (0.10 and 0.11 give 5.5 and 10.6;
+        // benchmarks/logs/capsid_calibration_depth025_2026-12-05.log).
+        .real("attraction", 0.105, 0, 10, "epsilon", "attraction strength e of the site pairs (eq. 6)")
         .real("attraction_range", 3, 0.5, 10, "sigma", "r_a: the attraction's range", true)
         .real("harmonic_range", 0.3, 0.01, 1, "sigma", "r_h: where the attraction becomes harmonic", true)
         .real("bond_range", 0.5, 0.01, 2, "sigma",
@@ -544,10 +552,10 @@ ProblemInfo capsid_assembly_info() {
     info.presets["tiny"] = {{"capsomers", "60"}, {"start", "shell"}, {"steps", "2000"},
                             {"sample_every", "200"}};
     // For the hysteresis (benchmarks/capsid_hysteresis.sh, with start=shell for the other side):
-    // the open 59-cluster at e = 0.062, below the paper's growth range (0.080-0.095; no growth
-    // from monomers at 0.06-0.09 in our runs). At 0.058 the closed shell itself lost members in
-    // 2 of 3 seeds (logs/capsid_hysteresis_2026-12-02.log); at 0.062 over 1e5 steps it lost none
-    // in 8 seeds while the open cluster lost members in 4 (capsid_hysteresis_2026-12-03.log).
+    // the open 59-cluster at e = 0.062, far below growth from monomers (none at 0.11). With the
+    // default rows over 1e5 steps it lost members in 10 of 16 seeds, the closed shell in 3
+    // (logs/capsid_hysteresis_depth025_2026-12-05.log; at 0.066 and above neither did); with
+    // the note's rows, in 4 of 8 against none (capsid_hysteresis_2026-12-03.log).
     info.presets["small"] = {{"capsomers", "60"}, {"start", "open_shell"}, {"attraction", "0.062"},
                              {"steps", "100000"}, {"sample_every", "5000"}, {"progress_interval", "60"}};
     // The paper's Table 1 system: N = 1.25e5 at p = 0.033 (4125 capsomers), its runs 0.85-3.1e8
