@@ -554,7 +554,7 @@ ProblemInfo capsid_assembly_info() {
     // For the hysteresis (benchmarks/capsid_hysteresis.sh, with start=shell for the other side):
     // the open 59-cluster at e = 0.062, far below growth from monomers (none at 0.11). With the
     // default rows over 1e5 steps it lost members in 10 of 16 seeds, the closed shell in 3
-    // (logs/capsid_hysteresis_depth025_2026-12-05.log; at 0.066 and above neither did); with
+    // (logs/capsid_hysteresis_depth025_2026-12-05.log; at 0.066-0.07, 1 member in 16 runs); with
     // the note's rows, in 4 of 8 against none (capsid_hysteresis_2026-12-03.log).
     info.presets["small"] = {{"capsomers", "60"}, {"start", "open_shell"}, {"attraction", "0.062"},
                              {"steps", "100000"}, {"sample_every", "5000"}, {"progress_interval", "60"}};
