@@ -8,7 +8,6 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "decomposition/exact_sum.hpp"
 #include "decomposition/halo_exchange.hpp"
@@ -35,6 +34,14 @@ namespace emergent {
 
 namespace {
 using Clock = std::chrono::steady_clock;
+
+/// The value kept for `id` in pairs sorted by id, or null.
+template <class T>
+const T* find_by_id(const std::vector<std::pair<std::int64_t, T>>& sorted, std::int64_t id) {
+    const auto it = std::lower_bound(sorted.begin(), sorted.end(), id,
+                                     [](const auto& entry, std::int64_t key) { return entry.first < key; });
+    return it != sorted.end() && it->first == id ? &it->second : nullptr;
+}
 
 /// Adds the seconds since construction to `slot` when it goes out of scope.
 class PhaseTimer {
@@ -426,14 +433,10 @@ struct Simulation::Engine {
         }
         if (bodies()) rigid.append_constituents(store);
         if (!restored_reference.empty()) {
-            for (std::size_t i = 0; i < store.n_owned(); ++i) {
-                if (is_free(i)) continue;
-                const auto it = std::lower_bound(
-                    restored_reference.begin(), restored_reference.end(), std::make_pair(store.id[i], Vec3{}),
-                    [](const auto& a, const auto& b) { return a.first < b.first; });
-                // A sphere whose saved copy went to another rank is binned at its body's pose.
-                if (it != restored_reference.end() && it->first == store.id[i]) store.position[i] = it->second;
-            }
+            // A sphere whose saved copy went to another rank is binned at its body's pose.
+            for (std::size_t i = 0; i < store.n_owned(); ++i)
+                if (const Vec3* at = is_free(i) ? nullptr : find_by_id(restored_reference, store.id[i]))
+                    store.position[i] = *at;
             std::vector<std::pair<std::int64_t, Vec3>>().swap(restored_reference);
         }
         // Cell order gives the force loop neighbours that sit close in memory.
@@ -1194,22 +1197,16 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
         // Each body where the saved state had it (unwrapped, with its image), and its spheres
         // placed from that pose: the run's positions, bit for bit.
         ParticleStore& b = e.rigid.store();
-        std::unordered_map<std::int64_t, Int3> image_of;
-        for (std::size_t k = 0; k < b.n_owned(); ++k) {
-            const auto it = std::lower_bound(saved_bodies.begin(), saved_bodies.end(),
-                                             std::make_pair(b.id[k], std::pair<Vec3, Int3>{}),
-                                             [](const auto& x, const auto& y) { return x.first < y.first; });
-            if (it != saved_bodies.end() && it->first == b.id[k]) {
-                b.position[k] = it->second.first;
-                b.image[k] = it->second.second;
-            }
-            image_of[b.id[k]] = b.image[k];
-        }
-        e.bodies_host_wrote(kPosition | kImage);
-        for (std::size_t i = 0; i < s.n_owned(); ++i)
-            if (!e.is_free(i)) s.image[i] = image_of.at(s.body[i]);
         const auto& first = e.rigid.constituent_first();
         const auto& index = e.rigid.constituent_index();
+        for (std::size_t k = 0; k < b.n_owned(); ++k) {
+            if (const auto* pose = find_by_id(saved_bodies, b.id[k])) {
+                b.position[k] = pose->first;
+                b.image[k] = pose->second;
+            }
+            for (std::uint32_t j = first[k]; j < first[k + 1]; ++j) s.image[index[j]] = b.image[k];
+        }
+        e.bodies_host_wrote(kPosition | kImage);
         e.rigid.place_at(exec::Target{}, e.rigid.host_arrays(), rigid::ConstituentIndex{first.data(), index.data()},
                          s.position.data(), s.velocity.data());
         e.host_wrote(kPosition | kVelocity | kImage);
