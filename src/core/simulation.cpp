@@ -88,6 +88,10 @@ struct Simulation::Engine {
     /// Bodies' spheres are binned there, where the run's last build binned them, rather than
     /// at their bodies' current poses, so the list and the force sums' order are the run's.
     std::vector<std::pair<std::int64_t, Vec3>> restored_reference;
+    /// Set by a restore for its one build: the bodies were dealt to the ranks that owned them
+    /// (on the rank count that wrote the state) or that hold their centres, and stay there until
+    /// the run's next build, as they would have in the uninterrupted run.
+    bool bodies_dealt = false;
     bool built_this_step = false;   ///< the list was rebuilt within the current step
     /// The largest squared displacement since the last build, taken in the last drift's pass
     /// (kick_drift), for the rebuild test that follows it.
@@ -429,11 +433,13 @@ struct Simulation::Engine {
             PhaseTimer migrating(times.migrate);
             migration.apply(store, *grid);
             // Bodies move whole, by their centre of mass; their spheres follow.
-            if (bodies()) rigid.migrate(*grid);
+            if (bodies() && !bodies_dealt) rigid.migrate(*grid);
+            bodies_dealt = false;
         }
         if (bodies()) rigid.append_constituents(store);
         if (!restored_reference.empty()) {
-            // A sphere whose saved copy went to another rank is binned at its body's pose.
+            // Spheres come with their bodies (io::restore_checkpoint deals them so); one that
+            // did not is binned at its body's pose.
             for (std::size_t i = 0; i < store.n_owned(); ++i)
                 if (const Vec3* at = is_free(i) ? nullptr : find_by_id(restored_reference, store.id[i]))
                     store.position[i] = *at;
@@ -1160,8 +1166,8 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     Engine& e = *engine_;
     if (e.bodies() != (bodies != nullptr))
         throw InputError("restore: the saved state and this scene disagree about rigid bodies");
-    // The bodies' saved poses by id: the build below moves a body that left the box since the
-    // run's last build back into it, which that run had not done yet.
+    // The bodies' saved poses by id, set again after the build below (which bins their spheres
+    // at the saved list references and leaves the bodies on the ranks they were dealt to).
     std::vector<std::pair<std::int64_t, std::pair<Vec3, Int3>>> saved_bodies;
     if (bodies) {
         for (std::size_t b = 0; b < bodies->n_owned(); ++b)
@@ -1188,6 +1194,7 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     e.prepare();
     e.place_body_frames();
     if (bodies) {
+        e.bodies_dealt = true;
         e.restored_reference.resize(by_id.size());
         for (std::size_t k = 0; k < by_id.size(); ++k)
             e.restored_reference[k] = {by_id[k].first, reference[by_id[k].second]};
@@ -1240,9 +1247,9 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
     // half-step velocities, which a saved state does not hold: the saved forces continue it
     // exactly (the sums for measure() come from the recomputation).
     if (saved_forces) {
-        // A sphere whose saved copy is on another rank keeps the recomputed force (with
-        // friction, a continuation then differs from the uninterrupted run at round-off level
-        // and beyond, as restores with bodies may anyway).
+        // A sphere whose saved copy is on another rank (not from a checkpoint, whose reader
+        // deals spheres with their bodies) keeps the recomputed force: with friction the
+        // continuation would then stray from the uninterrupted run.
         e.host_reads(kForce | kPosition);
         for (std::size_t i = 0; i < s.n_owned(); ++i) {
             const std::size_t k = saved(s.id[i]);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "decomposition/distributor.hpp"
+#include "decomposition/reductions.hpp"
 #include "emergent/build_info.hpp"
 #include "emergent/error.hpp"
 #include "io/h5.hpp"
@@ -121,6 +122,11 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
             sizeof(Vec3));
         if (sim.has_bodies()) {
             put("body", H5T_NATIVE_LLONG, 0, s.body.data(), sizeof(std::int64_t));
+            // Who owns what: a body stays on its rank from one list build to the next, though
+            // its centre may leave the domain meanwhile, and its spheres stay with it. A
+            // continuation on the same rank grid deals them back there.
+            const std::vector<int> owner(s.n_owned(), sim.rank());
+            put("owner_rank", H5T_NATIVE_INT, 0, owner.data(), sizeof(int));
             ParticleStore& b = sim.bodies();
             H5Id group = create_group(root, "bodies");
             write_attribute(group, "n_global", sim.n_bodies_global());
@@ -139,6 +145,8 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
             put_body("orientation", H5T_NATIVE_DOUBLE, 4, b.orientation.data(), sizeof(Quat));
             put_body("angular_momentum", H5T_NATIVE_DOUBLE, 4, b.angular_momentum.data(),
                      sizeof(Quat));
+            const std::vector<int> body_owner(b.n_owned(), sim.rank());
+            put_body("owner_rank", H5T_NATIVE_INT, 0, body_owner.data(), sizeof(int));
         }
     }
     // Every rank has closed the file; only then does it replace the previous checkpoint.
@@ -221,8 +229,8 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     // On the grid that wrote it, the domains are the checkpoint's; on another, equal slabs
     // (load balance, if on, moves them at its next step).
     const Int3 dims = sim.rank_grid_dims();
-    if (h.domain_grid == std::vector<double>{double(dims.x), double(dims.y), double(dims.z)})
-        sim.set_domain_cuts(h.domain_cuts);
+    const bool same_grid = h.domain_grid == std::vector<double>{double(dims.x), double(dims.y), double(dims.z)};
+    if (same_grid) sim.set_domain_cuts(h.domain_cuts);
     const decomp::IdBlocks blocks{h.n_global, n_ranks};
     const long long first = blocks.first(rank);
     const auto count = static_cast<std::size_t>(blocks.first(rank + 1) - first);
@@ -232,6 +240,16 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     std::vector<int> species(count);
     std::vector<Real> diameter(count);
     std::vector<std::int64_t> body(count, -1);
+    // On the grid that wrote it, bodies and their spheres go back to the ranks that owned them
+    // (checkpoints before owners were kept, and other grids: the rank holding the centre).
+    std::vector<int> owner;
+    std::vector<int> body_rank;  // otherwise: each body's rank by its centre, by body id
+    // A damaged owner or body id seen on one rank stops every rank (no rank waits in an exchange).
+    std::string damaged;
+    auto agree = [&] {
+        const std::string message = decomp::first_message(comm, damaged);
+        if (!message.empty()) throw InputError(message);
+    };
     ParticleStore bodies;
     bool with_bodies = false;
     std::vector<std::int64_t> id(count);
@@ -251,6 +269,13 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             throw InputError("checkpoint and scene disagree about rigid bodies");
         if (with_bodies) {
             read_rows(root, "body", H5T_NATIVE_LLONG, 0, body.data(), first, count);
+            if (same_grid && exists(root, "owner_rank")) {
+                owner.resize(count);
+                read_rows(root, "owner_rank", H5T_NATIVE_INT, 0, owner.data(), first, count);
+                for (int r : owner)
+                    if ((r < 0 || r >= n_ranks) && damaged.empty())
+                        damaged = "'" + path + "': owner_rank " + std::to_string(r) + " is not a rank of this run";
+            }
             H5Id group = open_group(root, "bodies");
             const long long nb = read_integer_attribute(group, "n_global");
             const decomp::IdBlocks bblocks{nb, n_ranks};
@@ -269,9 +294,24 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             read_rows(group, "orientation", H5T_NATIVE_DOUBLE, 4, q.data(), bfirst, bcount);
             read_rows(group, "angular_momentum", H5T_NATIVE_DOUBLE, 4, p.data(), bfirst, bcount);
             for (std::size_t k = 0; k < bcount; ++k) bid[k] = bfirst + static_cast<long long>(k);
-            // Bodies go to the rank holding their centre of mass.
             std::vector<int> bdest(bcount);
-            for (std::size_t k = 0; k < bcount; ++k) bdest[k] = sim.rank_of(bx[k]);
+            if (!owner.empty()) {
+                read_rows(group, "owner_rank", H5T_NATIVE_INT, 0, bdest.data(), bfirst, bcount);
+                for (int r : bdest)
+                    if ((r < 0 || r >= n_ranks) && damaged.empty())
+                        damaged = "'" + path + "': bodies/owner_rank " + std::to_string(r) +
+                                  " is not a rank of this run";
+            } else {
+                // Bodies go to the rank holding their centre of mass, and their spheres with
+                // them (so each sphere finds its saved force there): every rank reads where
+                // every body goes.
+                std::vector<Vec3> centre(static_cast<std::size_t>(nb));
+                read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, centre.data(), 0, centre.size());
+                body_rank.resize(centre.size());
+                for (std::size_t b = 0; b < centre.size(); ++b) body_rank[b] = sim.rank_of(centre[b]);
+                for (std::size_t k = 0; k < bcount; ++k) bdest[k] = body_rank[bfirst + k];
+            }
+            agree();
             const decomp::Distributor bplan(comm, bdest);
             const auto mx = bplan.apply(bx), mv = bplan.apply(bv);
             const auto mimage = bplan.apply(bimage);
@@ -289,9 +329,21 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
         }
     }
     for (std::size_t k = 0; k < count; ++k) id[k] = first + static_cast<long long>(k);
-    // Each particle goes to the rank whose domain held it when the list was last built.
+    // Each particle goes to the rank whose domain held it when the list was last built (a
+    // body's sphere: to its body's owner).
     std::vector<int> destination(count);
-    for (std::size_t k = 0; k < count; ++k) destination[k] = sim.rank_of(ref[k]);
+    for (std::size_t k = 0; k < count; ++k) {
+        if (body[k] >= 0 && owner.empty() && static_cast<std::size_t>(body[k]) >= body_rank.size()) {
+            if (damaged.empty())
+                damaged = "'" + path + "': particle " + std::to_string(first + static_cast<long long>(k)) +
+                          " names body " + std::to_string(body[k]) + ", which the checkpoint lacks";
+            continue;
+        }
+        destination[k] = !owner.empty() ? owner[k]
+                         : body[k] >= 0 ? body_rank[static_cast<std::size_t>(body[k])]
+                                        : sim.rank_of(ref[k]);
+    }
+    agree();
     const decomp::Distributor plan(comm, destination);
     const auto mx = plan.apply(x), mv = plan.apply(v), mref = plan.apply(ref), mf = plan.apply(f);
     const auto mimage = plan.apply(image);
