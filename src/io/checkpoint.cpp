@@ -250,6 +250,11 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
         const std::string message = decomp::first_message(comm, damaged);
         if (!message.empty()) throw InputError(message);
     };
+    auto check_ranks = [&](const char* name, const std::vector<int>& ranks) {
+        for (int r : ranks)
+            if ((r < 0 || r >= n_ranks) && damaged.empty())
+                damaged = "'" + path + "': " + name + " " + std::to_string(r) + " is not a rank of this run";
+    };
     ParticleStore bodies;
     bool with_bodies = false;
     std::vector<std::int64_t> id(count);
@@ -272,9 +277,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             if (same_grid && exists(root, "owner_rank")) {
                 owner.resize(count);
                 read_rows(root, "owner_rank", H5T_NATIVE_INT, 0, owner.data(), first, count);
-                for (int r : owner)
-                    if ((r < 0 || r >= n_ranks) && damaged.empty())
-                        damaged = "'" + path + "': owner_rank " + std::to_string(r) + " is not a rank of this run";
+                check_ranks("owner_rank", owner);
             }
             H5Id group = open_group(root, "bodies");
             const long long nb = read_integer_attribute(group, "n_global");
@@ -297,10 +300,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             std::vector<int> bdest(bcount);
             if (!owner.empty()) {
                 read_rows(group, "owner_rank", H5T_NATIVE_INT, 0, bdest.data(), bfirst, bcount);
-                for (int r : bdest)
-                    if ((r < 0 || r >= n_ranks) && damaged.empty())
-                        damaged = "'" + path + "': bodies/owner_rank " + std::to_string(r) +
-                                  " is not a rank of this run";
+                check_ranks("bodies/owner_rank", bdest);
             } else {
                 // Bodies go to the rank holding their centre of mass, and their spheres with
                 // them (so each sphere finds its saved force there): every rank reads where

@@ -7,7 +7,8 @@
 #   spheres by their own positions: the continuation strayed by 1e-2 within 100 steps);
 # - on 3 ranks and on 1, within round-off of it: each sphere goes with its body, so it finds
 #   its saved force (the friction depends on the half-step velocities the state lacks);
-# - with an owner that is no rank of the run, one line naming the dataset, exit status 2.
+# - with an owner that is no rank of the run, or a sphere naming a body the checkpoint lacks,
+#   one line naming it, exit status 2.
 # usage: rigid_restart_ranks.sh EMERGENT MPIRUN EXPECT_ERROR
 set -euo pipefail
 exe=$1
@@ -59,3 +60,14 @@ with h5py.File(sys.argv[2], "r+") as f:
     f["checkpoint/bodies/owner_rank"][0] = 7
 PY
 "$expect" "bodies/owner_rank 7 is not a rank of this run" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad.h5" -o "$dir/bad"
+# A particle naming a body the checkpoint lacks, continued on another grid (where spheres go
+# with their bodies by body id): one line naming the particle.
+/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_body.h5" <<'PY'
+import shutil, sys, h5py, numpy as np
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    body = f["checkpoint/body"]
+    k = int(np.flatnonzero(body[:] >= 0)[-1])
+    body[k] = 10 ** 9
+PY
+"$expect" "particle [0-9]+ names body 1000000000, which the checkpoint lacks" "$mpirun" -q --allow-run-as-root --oversubscribe -np 3 "$exe" run --restart "$dir/bad_body.h5" -o "$dir/bad_body"
