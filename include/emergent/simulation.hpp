@@ -286,7 +286,8 @@ public:
     /// built afresh; tests/io/rigid_output.sh finds a settling bed bit-identical).
     /// `saved_forces`: owned.force holds the forces of the saved step, which the run continues
     /// with (velocity-dependent forces cannot be recomputed from a saved state); otherwise they
-    /// are recomputed from the positions.
+    /// are recomputed from the positions. InputError (on every rank) where a body's spheres
+    /// are not all in `owned` on the body's rank, or a body's kind is not declared.
     void restore(ParticleStore&& owned, std::vector<Vec3>&& reference, long long step,
                  double time, long long rebuilds, ParticleStore* bodies = nullptr,
                  bool saved_forces = false);

@@ -1177,6 +1177,9 @@ void Simulation::restore(ParticleStore&& owned, std::vector<Vec3>&& reference, l
         e.rigid.store() = std::move(*bodies);
         e.bodies_host_wrote(Engine::kBodyFields);
         if (!owned.has_rigid_fields()) owned.enable_rigid_fields();
+        // Spheres not dealt with their bodies cannot be indexed: every rank stops with the first.
+        const std::string problem = decomp::first_message(e.comm, e.rigid.check_constituents(owned));
+        if (!problem.empty()) throw InputError(problem);
     }
     if (reference.size() != owned.n_owned()) throw std::logic_error("restore: size mismatch");
     // The list is rebuilt from the positions it was originally built from, which reorders the

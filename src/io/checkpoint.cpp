@@ -2,6 +2,7 @@
 // Checkpoint writing and restoring.
 #include "io/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <utility>
 
@@ -257,6 +258,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     };
     ParticleStore bodies;
     bool with_bodies = false;
+    long long n_bodies = 0;
     std::vector<std::int64_t> id(count);
     {
         H5Id file = open_file(path, comm, false);
@@ -281,6 +283,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             }
             H5Id group = open_group(root, "bodies");
             const long long nb = read_integer_attribute(group, "n_global");
+            n_bodies = nb;
             const decomp::IdBlocks bblocks{nb, n_ranks};
             const long long bfirst = bblocks.first(rank);
             const auto bcount = static_cast<std::size_t>(bblocks.first(rank + 1) - bfirst);
@@ -289,7 +292,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             std::vector<int> kind(bcount);
             std::vector<std::int64_t> first_particle(bcount), bid(bcount);
             std::vector<Quat> q(bcount), p(bcount);
-            read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, bx.data(), bfirst, bcount);
+            if (!owner.empty()) read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, bx.data(), bfirst, bcount);
             read_rows(group, "velocity", H5T_NATIVE_DOUBLE, 3, bv.data(), bfirst, bcount);
             read_rows(group, "image", H5T_NATIVE_INT, 3, bimage.data(), bfirst, bcount);
             read_rows(group, "kind", H5T_NATIVE_INT, 0, kind.data(), bfirst, bcount);
@@ -307,6 +310,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
                 // every body goes.
                 std::vector<Vec3> centre(static_cast<std::size_t>(nb));
                 read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, centre.data(), 0, centre.size());
+                std::copy_n(centre.begin() + bfirst, bcount, bx.begin());
                 body_rank.resize(centre.size());
                 for (std::size_t b = 0; b < centre.size(); ++b) body_rank[b] = sim.rank_of(centre[b]);
                 for (std::size_t k = 0; k < bcount; ++k) bdest[k] = body_rank[bfirst + k];
@@ -333,7 +337,7 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     // body's sphere: to its body's owner).
     std::vector<int> destination(count);
     for (std::size_t k = 0; k < count; ++k) {
-        if (body[k] >= 0 && owner.empty() && static_cast<std::size_t>(body[k]) >= body_rank.size()) {
+        if (body[k] < -1 || body[k] >= n_bodies) {
             if (damaged.empty())
                 damaged = "'" + path + "': particle " + std::to_string(first + static_cast<long long>(k)) +
                           " names body " + std::to_string(body[k]) + ", which the checkpoint lacks";
@@ -359,8 +363,12 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
         owned.force[k] = mf[k];
         if (with_bodies) owned.body[k] = mbody[k];
     }
-    sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,
-                h.rebuilds, with_bodies ? &bodies : nullptr, with_forces);
+    try {
+        sim.restore(std::move(owned), std::vector<Vec3>(mref.begin(), mref.end()), h.step, h.time,
+                    h.rebuilds, with_bodies ? &bodies : nullptr, with_forces);
+    } catch (const InputError& e) {
+        throw InputError("'" + path + "': " + e.what());
+    }
 }
 
 }  // namespace

@@ -122,6 +122,41 @@ void RigidBodies::index_constituents(const ParticleStore& store) {
     }
 }
 
+std::string RigidBodies::check_constituents(const ParticleStore& store) const {
+    std::unordered_map<std::int64_t, std::size_t> local;
+    std::vector<std::size_t> first(bodies_.n_owned() + 1, 0);
+    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
+        const int kind = bodies_.species[b];
+        if (kind < 0 || static_cast<std::size_t>(kind) >= frames_.size())
+            return "body " + std::to_string(bodies_.id[b]) + " has kind " + std::to_string(kind) +
+                   ", which the scene does not declare";
+        local[bodies_.id[b]] = b;
+        first[b + 1] = first[b] + frames_[kind].positions.size();
+    }
+    auto stray = [](std::int64_t particle, std::int64_t body) {
+        return "particle " + std::to_string(particle) + " of body " + std::to_string(body) +
+               " is not on its body's rank";
+    };
+    std::vector<char> seen(first.back(), 0);
+    for (std::size_t i = 0; i < store.n_owned(); ++i) {
+        if (store.body[i] < 0) continue;
+        const auto it = local.find(store.body[i]);
+        if (it == local.end()) return stray(store.id[i], store.body[i]);
+        const std::size_t b = it->second;
+        const std::int64_t offset = store.id[i] - bodies_.body[b];
+        if (offset < 0 || static_cast<std::size_t>(offset) >= first[b + 1] - first[b])
+            return "particle " + std::to_string(store.id[i]) + " is not one of body " +
+                   std::to_string(bodies_.id[b]) + "'s spheres (they start at particle " +
+                   std::to_string(bodies_.body[b]) + ")";
+        seen[first[b] + static_cast<std::size_t>(offset)] = 1;
+    }
+    // A sphere missing here is on another rank (which names it too) or nowhere.
+    for (std::size_t b = 0; b < bodies_.n_owned(); ++b)
+        for (std::size_t j = first[b]; j < first[b + 1]; ++j)
+            if (!seen[j]) return stray(bodies_.body[b] + static_cast<std::int64_t>(j - first[b]), bodies_.id[b]);
+    return {};
+}
+
 void RigidBodies::kick_drift(const exec::Target& target, const Arrays& a, Vec3* x, Vec3* v, double kick,
                              double drift) const {
     exec::for_each(target, bodies_.n_owned(),

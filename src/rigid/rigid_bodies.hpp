@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <unordered_map>
 #include <vector>
 
@@ -52,6 +53,10 @@ public:
     void append_constituents(ParticleStore& store) const;
     /// After particles were reordered: where each body's constituents are.
     void index_constituents(const ParticleStore& store);
+    /// Empty if every owned body has a known kind and exactly its kind's constituents among
+    /// `store`'s owned particles, and every sphere there belongs to an owned body; otherwise
+    /// the first mismatch, in words (a restored state that index_constituents cannot use).
+    std::string check_constituents(const ParticleStore& store) const;
 
     /// Where the loops over bodies read and write: the bodies' arrays, their frames and the
     /// constituent index, in host memory (host_arrays()) or in a back end's.

@@ -7,8 +7,11 @@
 #   spheres by their own positions: the continuation strayed by 1e-2 within 100 steps);
 # - on 3 ranks and on 1, within round-off of it: each sphere goes with its body, so it finds
 #   its saved force (the friction depends on the half-step velocities the state lacks);
-# - with an owner that is no rank of the run, or a sphere naming a body the checkpoint lacks,
-#   one line naming it, exit status 2.
+# - with an owner that is no rank of the run, a body of a kind the scene lacks, a sphere naming
+#   a body the checkpoint lacks (on another grid and on the same one), or a sphere whose saved
+#   owner is not its body's: one line naming it, exit status 2. Before, on the same grid, the
+#   last two ran on silently (the sphere, placed again from its body, lost its saved force) and
+#   the unknown kind crashed.
 # usage: rigid_restart_ranks.sh EMERGENT MPIRUN EXPECT_ERROR
 set -euo pipefail
 exe=$1
@@ -71,3 +74,24 @@ with h5py.File(sys.argv[2], "r+") as f:
     body[k] = 10 ** 9
 PY
 "$expect" "particle [0-9]+ names body 1000000000, which the checkpoint lacks" "$mpirun" -q --allow-run-as-root --oversubscribe -np 3 "$exe" run --restart "$dir/bad_body.h5" -o "$dir/bad_body"
+# The same on the grid that wrote it (where spheres go to their saved owners).
+"$expect" "particle [0-9]+ names body 1000000000, which the checkpoint lacks" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_body.h5" -o "$dir/bad_body2"
+# A sphere whose saved owner is another rank than its body's: one line naming the sphere.
+/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_owner.h5" <<'PY'
+import shutil, sys, h5py, numpy as np
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    c = f["checkpoint"]
+    body, owner = c["body"][:], c["owner_rank"][:]
+    k = int(np.flatnonzero(body >= 0)[0])
+    c["owner_rank"][k] = 1 - owner[k]
+PY
+"$expect" "particle [0-9]+ of body [0-9]+ is not on its body's rank" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_owner.h5" -o "$dir/bad_owner"
+# A body of a kind the scene does not declare: one line naming the body.
+/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_kind.h5" <<'PY'
+import shutil, sys, h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    f["checkpoint/bodies/kind"][0] = 9
+PY
+"$expect" "body 0 has kind 9, which the scene does not declare" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_kind.h5" -o "$dir/bad_kind"
