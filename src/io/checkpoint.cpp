@@ -3,6 +3,8 @@
 #include "io/checkpoint.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <utility>
 
@@ -161,6 +163,13 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
 }
 
 namespace {
+bool finite(const Vec3& a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+// Periodic images a run can reach (one crossing per step at most; far from int overflow).
+bool plausible(const Int3& n) {
+    constexpr int limit = 1 << 30;
+    return std::abs(n.x) < limit && std::abs(n.y) < limit && std::abs(n.z) < limit;
+}
+
 CheckpointHeader read_header(const std::string& path, MPI_Comm comm) {
     H5Id file = open_file(path, comm, false);
     if (!exists(file, "checkpoint")) throw InputError("'" + path + "' is not an emergent checkpoint");
@@ -174,6 +183,15 @@ CheckpointHeader read_header(const std::string& path, MPI_Comm comm) {
     h.rebuilds = read_integer_attribute(root, "rebuilds");
     h.n_global = read_integer_attribute(root, "n_global");
     h.ranks = static_cast<int>(read_integer_attribute(root, "ranks"));
+    // Counts a run cannot have written: a damaged file, named before anything is sized by them.
+    auto refuse = [&](const char* name, const std::string& value) {
+        throw InputError("'" + path + "': checkpoint attribute '" + name + "' is " + value);
+    };
+    if (h.step < 0) refuse("step", std::to_string(h.step));
+    if (h.rebuilds < 0) refuse("rebuilds", std::to_string(h.rebuilds));
+    if (h.n_global < 0) refuse("n_global", std::to_string(h.n_global));
+    if (h.ranks < 1) refuse("ranks", std::to_string(h.ranks));
+    if (!std::isfinite(h.time) || h.time < 0) refuse("time", std::to_string(h.time));
     {
         H5Id params = open_group(root, "config");
         H5O_info_t info;
@@ -263,26 +281,27 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
     {
         H5Id file = open_file(path, comm, false);
         H5Id root = open_group(file, "checkpoint");
-        read_rows(root, "position", H5T_NATIVE_DOUBLE, 3, x.data(), first, count);
-        read_rows(root, "velocity", H5T_NATIVE_DOUBLE, 3, v.data(), first, count);
+        read_rows(root, "position", H5T_NATIVE_DOUBLE, 3, x.data(), first, count, h.n_global);
+        read_rows(root, "velocity", H5T_NATIVE_DOUBLE, 3, v.data(), first, count, h.n_global);
         with_forces = exists(root, "force");  // checkpoints before forces were kept: recomputed
-        if (with_forces) read_rows(root, "force", H5T_NATIVE_DOUBLE, 3, f.data(), first, count);
-        read_rows(root, "reference_position", H5T_NATIVE_DOUBLE, 3, ref.data(), first, count);
-        read_rows(root, "image", H5T_NATIVE_INT, 3, image.data(), first, count);
-        read_rows(root, "species", H5T_NATIVE_INT, 0, species.data(), first, count);
-        read_rows(root, "diameter", H5T_NATIVE_DOUBLE, 0, diameter.data(), first, count);
+        if (with_forces) read_rows(root, "force", H5T_NATIVE_DOUBLE, 3, f.data(), first, count, h.n_global);
+        read_rows(root, "reference_position", H5T_NATIVE_DOUBLE, 3, ref.data(), first, count, h.n_global);
+        read_rows(root, "image", H5T_NATIVE_INT, 3, image.data(), first, count, h.n_global);
+        read_rows(root, "species", H5T_NATIVE_INT, 0, species.data(), first, count, h.n_global);
+        read_rows(root, "diameter", H5T_NATIVE_DOUBLE, 0, diameter.data(), first, count, h.n_global);
         with_bodies = exists(root, "bodies");
         if (with_bodies != sim.has_bodies())
             throw InputError("checkpoint and scene disagree about rigid bodies");
         if (with_bodies) {
-            read_rows(root, "body", H5T_NATIVE_LLONG, 0, body.data(), first, count);
+            read_rows(root, "body", H5T_NATIVE_LLONG, 0, body.data(), first, count, h.n_global);
             if (same_grid && exists(root, "owner_rank")) {
                 owner.resize(count);
-                read_rows(root, "owner_rank", H5T_NATIVE_INT, 0, owner.data(), first, count);
+                read_rows(root, "owner_rank", H5T_NATIVE_INT, 0, owner.data(), first, count, h.n_global);
                 check_ranks("owner_rank", owner);
             }
             H5Id group = open_group(root, "bodies");
             const long long nb = read_integer_attribute(group, "n_global");
+            if (nb < 0) throw InputError("'" + path + "': checkpoint attribute 'bodies/n_global' is " + std::to_string(nb));
             n_bodies = nb;
             const decomp::IdBlocks bblocks{nb, n_ranks};
             const long long bfirst = bblocks.first(rank);
@@ -292,24 +311,37 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
             std::vector<int> kind(bcount);
             std::vector<std::int64_t> first_particle(bcount), bid(bcount);
             std::vector<Quat> q(bcount), p(bcount);
-            if (!owner.empty()) read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, bx.data(), bfirst, bcount);
-            read_rows(group, "velocity", H5T_NATIVE_DOUBLE, 3, bv.data(), bfirst, bcount);
-            read_rows(group, "image", H5T_NATIVE_INT, 3, bimage.data(), bfirst, bcount);
-            read_rows(group, "kind", H5T_NATIVE_INT, 0, kind.data(), bfirst, bcount);
-            read_rows(group, "first_particle", H5T_NATIVE_LLONG, 0, first_particle.data(), bfirst, bcount);
-            read_rows(group, "orientation", H5T_NATIVE_DOUBLE, 4, q.data(), bfirst, bcount);
-            read_rows(group, "angular_momentum", H5T_NATIVE_DOUBLE, 4, p.data(), bfirst, bcount);
+            if (!owner.empty()) read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, bx.data(), bfirst, bcount, nb);
+            read_rows(group, "velocity", H5T_NATIVE_DOUBLE, 3, bv.data(), bfirst, bcount, nb);
+            read_rows(group, "image", H5T_NATIVE_INT, 3, bimage.data(), bfirst, bcount, nb);
+            read_rows(group, "kind", H5T_NATIVE_INT, 0, kind.data(), bfirst, bcount, nb);
+            read_rows(group, "first_particle", H5T_NATIVE_LLONG, 0, first_particle.data(), bfirst, bcount, nb);
+            read_rows(group, "orientation", H5T_NATIVE_DOUBLE, 4, q.data(), bfirst, bcount, nb);
+            read_rows(group, "angular_momentum", H5T_NATIVE_DOUBLE, 4, p.data(), bfirst, bcount, nb);
             for (std::size_t k = 0; k < bcount; ++k) bid[k] = bfirst + static_cast<long long>(k);
+            for (std::size_t k = 0; k < bcount && damaged.empty(); ++k) {
+                const std::string who = "'" + path + "': body " + std::to_string(bid[k]);
+                const double norm2 = q[k].w * q[k].w + q[k].x * q[k].x + q[k].y * q[k].y + q[k].z * q[k].z;
+                if (!finite(bx[k]) && !owner.empty()) damaged = who + " has a non-finite position";
+                else if (!finite(bv[k])) damaged = who + " has a non-finite velocity";
+                else if (!plausible(bimage[k])) damaged = who + " has an image beyond any run's";
+                // NO_SQUISH keeps |q| = 1 to round-off (~1e-12 after 1e9 steps).
+                else if (!(std::abs(norm2 - 1) < 1e-6)) damaged = who + " has an orientation that is not a unit quaternion";
+                else if (!std::isfinite(p[k].w + p[k].x + p[k].y + p[k].z)) damaged = who + " has a non-finite angular_momentum";
+            }
             std::vector<int> bdest(bcount);
             if (!owner.empty()) {
-                read_rows(group, "owner_rank", H5T_NATIVE_INT, 0, bdest.data(), bfirst, bcount);
+                read_rows(group, "owner_rank", H5T_NATIVE_INT, 0, bdest.data(), bfirst, bcount, nb);
                 check_ranks("bodies/owner_rank", bdest);
             } else {
                 // Bodies go to the rank holding their centre of mass, and their spheres with
                 // them (so each sphere finds its saved force there): every rank reads where
                 // every body goes.
                 std::vector<Vec3> centre(static_cast<std::size_t>(nb));
-                read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, centre.data(), 0, centre.size());
+                read_rows(group, "position", H5T_NATIVE_DOUBLE, 3, centre.data(), 0, centre.size(), nb);
+                for (std::size_t b = 0; b < centre.size() && damaged.empty(); ++b)
+                    if (!finite(centre[b]))
+                        damaged = "'" + path + "': body " + std::to_string(b) + " has a non-finite position";
                 std::copy_n(centre.begin() + bfirst, bcount, bx.begin());
                 body_rank.resize(centre.size());
                 for (std::size_t b = 0; b < centre.size(); ++b) body_rank[b] = sim.rank_of(centre[b]);
@@ -333,6 +365,21 @@ void restore_particles(const std::string& path, Simulation& sim, const Checkpoin
         }
     }
     for (std::size_t k = 0; k < count; ++k) id[k] = first + static_cast<long long>(k);
+    // Values no run writes (the guards stop a run before a non-finite state is saved).
+    const int n_species = static_cast<int>(sim.species_masses().size());
+    for (std::size_t k = 0; k < count && damaged.empty(); ++k) {
+        const std::string who = "'" + path + "': particle " + std::to_string(id[k]);
+        if (!finite(x[k])) damaged = who + " has a non-finite position";
+        else if (!finite(v[k])) damaged = who + " has a non-finite velocity";
+        else if (!finite(f[k])) damaged = who + " has a non-finite force";
+        else if (!finite(ref[k])) damaged = who + " has a non-finite reference_position";
+        else if (!plausible(image[k])) damaged = who + " has an image beyond any run's (" + std::to_string(image[k].x) +
+                                                 ", " + std::to_string(image[k].y) + ", " + std::to_string(image[k].z) + ")";
+        else if (species[k] < 0 || species[k] >= n_species)
+            damaged = who + " has species " + std::to_string(species[k]) + ", which the scene does not declare";
+        else if (!std::isfinite(diameter[k]) || diameter[k] < 0)
+            damaged = who + " has diameter " + std::to_string(diameter[k]);
+    }
     // Each particle goes to the rank whose domain held it when the list was last built (a
     // body's sphere: to its body's owner).
     std::vector<int> destination(count);

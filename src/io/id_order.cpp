@@ -79,9 +79,23 @@ void write_rows(hid_t parent, const char* name, hid_t type, long long n_global, 
 }
 
 void read_rows(hid_t parent, const char* name, hid_t type, int width, void* rows,
-               long long first, std::size_t count) {
+               long long first, std::size_t count, long long n_rows) {
     H5Id set(H5Dopen2(parent, name, H5P_DEFAULT));
-    if (set < 0) throw InputError(std::string("checkpoint has no dataset '") + name + "'");
+    // IoError: the checkpoint's reader names the file (restore_checkpoint).
+    if (set < 0) throw IoError(std::string("no dataset '") + name + "'");
+    {
+        // A shape that does not fit would read past the rows or silently leave some behind.
+        H5Id space(H5Dget_space(set));
+        hsize_t dims[2] = {0, 0};
+        const int rank = H5Sget_simple_extent_ndims(space);
+        if (rank >= 1 && rank <= 2) H5Sget_simple_extent_dims(space, dims, nullptr);
+        const bool fits = rank == (width > 0 ? 2 : 1) && dims[0] == static_cast<hsize_t>(n_rows) &&
+                          (width == 0 || dims[1] == static_cast<hsize_t>(width));
+        if (!fits)
+            throw IoError(std::string("dataset '") + name + "' is not " + std::to_string(n_rows) +
+                          (width > 0 ? " x " + std::to_string(width) : std::string()) +
+                          ", the rows the checkpoint records");
+    }
     const RowSelection rows_here(set, width, first, count);
     H5Id xfer = collective_transfer();
     h5_check(H5Dread(set, type, rows_here.memory, rows_here.file, xfer, rows), std::string("read ") + name);

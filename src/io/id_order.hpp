@@ -36,8 +36,9 @@ private:
 void write_rows(hid_t parent, const char* name, hid_t type, long long n_global, int width,
                 const void* rows, long long first, std::size_t count);
 
-/// Reads rows [first, first + count) of a dataset of shape {N} or {N, width}. Collective.
+/// Reads rows [first, first + count) of a dataset of shape {n_rows} or {n_rows, width};
+/// IoError, the same on every rank, if it is missing or its shape is another. Collective.
 void read_rows(hid_t parent, const char* name, hid_t type, int width, void* rows,
-               long long first, std::size_t count);
+               long long first, std::size_t count, long long n_rows);
 
 }  // namespace emergent::io

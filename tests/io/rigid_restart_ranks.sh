@@ -7,11 +7,12 @@
 #   spheres by their own positions: the continuation strayed by 1e-2 within 100 steps);
 # - on 3 ranks and on 1, within round-off of it: each sphere goes with its body, so it finds
 #   its saved force (the friction depends on the half-step velocities the state lacks);
-# - with an owner that is no rank of the run, a body of a kind the scene lacks, a sphere naming
-#   a body the checkpoint lacks (on another grid and on the same one), or a sphere whose saved
-#   owner is not its body's: one line naming it, exit status 2. Before, on the same grid, the
-#   last two ran on silently (the sphere, placed again from its body, lost its saved force) and
-#   the unknown kind crashed.
+# - with an owner that is no rank of the run, a body of a kind the scene lacks or with an
+#   orientation that is no unit quaternion, a sphere naming a body the checkpoint lacks (on
+#   another grid and on the same one), or a sphere whose saved owner is not its body's: one
+#   line naming it, exit status 2. Before, on the same grid, the two about spheres ran on
+#   silently (the sphere, placed again from its body, lost its saved force) and the unknown
+#   kind crashed.
 # usage: rigid_restart_ranks.sh EMERGENT MPIRUN EXPECT_ERROR
 set -euo pipefail
 exe=$1
@@ -95,3 +96,11 @@ with h5py.File(sys.argv[2], "r+") as f:
     f["checkpoint/bodies/kind"][0] = 9
 PY
 "$expect" "body 0 has kind 9, which the scene does not declare" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_kind.h5" -o "$dir/bad_kind"
+# A body whose orientation is no unit quaternion (NO_SQUISH keeps |q| = 1 to round-off): one line.
+/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_q.h5" <<'PY'
+import shutil, sys, h5py
+shutil.copy(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    f["checkpoint/bodies/orientation"][3] = [2.0, 0.0, 0.0, 0.0]
+PY
+"$expect" "body 3 has an orientation that is not a unit quaternion" "$mpirun" -q --allow-run-as-root --oversubscribe -np 3 "$exe" run --restart "$dir/bad_q.h5" -o "$dir/bad_q"
