@@ -352,12 +352,12 @@ public:
         if (other_interval) return;  // the tallies start afresh
         // Tallies a checkpoint lacks (it predates them) start afresh; the others go on.
         for (const auto& [name, tally] : kTallies)
-            if (state.count(name) > 0) events_.*tally = get(name);
+            if (state.count(name) > 0) events_.*tally = tally_of(get, name);
         previous_ = restore_census(get, "previous");
         if (state.count("growth_events_coarse") == 0) return;
         for (const auto& [name, tally] : kTallies) {
             const std::string coarse = std::string(name) + "_coarse";
-            if (state.count(coarse) > 0) coarse_.*tally = get(coarse.c_str());
+            if (state.count(coarse) > 0) coarse_.*tally = tally_of(get, coarse);
         }
         previous_coarse_ = restore_census(get, "previous_coarse");
     }
@@ -450,12 +450,43 @@ private:
         m.push_back({name + "_sizes", std::vector<double>(c.cluster_size.begin(), c.cluster_size.end())});
     }
 
+    /// A tally of the checkpoint: one count per cluster size up to the shell's.
     template <class Get>
-    static BondCensus restore_census(const Get& get, const std::string& name) {
+    std::vector<double> tally_of(const Get& get, const std::string& name) const {
+        std::vector<double> t = get(name.c_str());
+        bool counts = t.size() == std::size_t(kShell);
+        for (double x : t) counts = counts && x >= 0 && x == std::floor(x);
+        if (!counts)
+            throw InputError(c_.scene() + ": the checkpoint's " + name + " is not " + std::to_string(kShell) +
+                             " counts");
+        return t;
+    }
+
+    /// The census a checkpoint kept, as census() makes it (or empty: none taken yet): every
+    /// capsomer once, ascending, each in a cluster whose size is its members' count. Anything
+    /// else is a damaged checkpoint, which the next tally could not compare.
+    template <class Get>
+    BondCensus restore_census(const Get& get, const std::string& name) const {
         BondCensus c;
-        for (double x : get((name + "_bodies").c_str())) c.bodies.push_back(std::int64_t(x));
-        for (double x : get((name + "_cluster").c_str())) c.cluster.push_back(int(x));
-        for (double x : get((name + "_sizes").c_str())) c.cluster_size.push_back(int(x));
+        const std::vector<double> bodies = get((name + "_bodies").c_str()),
+                                  cluster = get((name + "_cluster").c_str()),
+                                  sizes = get((name + "_sizes").c_str());
+        const auto n = std::size_t(n_capsomers_);
+        bool whole = bodies.empty() ? cluster.empty() && sizes.empty()
+                                    : bodies.size() == n && cluster.size() == n && sizes.size() <= n;
+        std::vector<int> members(sizes.size(), 0);
+        for (std::size_t k = 0; whole && k < bodies.size(); ++k) {
+            whole = bodies[k] == double(k) && cluster[k] >= 0 && cluster[k] < double(sizes.size()) &&
+                    cluster[k] == std::floor(cluster[k]);
+            if (whole) ++members[std::size_t(cluster[k])];
+        }
+        for (std::size_t g = 0; whole && g < sizes.size(); ++g) whole = sizes[g] == double(members[g]) && members[g] > 0;
+        if (!whole)
+            throw InputError(c_.scene() + ": the checkpoint's census '" + name +
+                             "' is not one of this run's capsomers in clusters");
+        for (double x : bodies) c.bodies.push_back(std::int64_t(x));
+        for (double x : cluster) c.cluster.push_back(int(x));
+        for (double x : sizes) c.cluster_size.push_back(int(x));
         return c;
     }
 

@@ -5,10 +5,11 @@
 // measurement behind the Reynolds and Taylor numbers of the taylor-couette scene.
 #include <cmath>
 
+#include "emergent/block_average.hpp"
+#include "emergent/error.hpp"
 #include "emergent/lattice.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
-#include "observe/block_average.hpp"
 
 namespace emergent::problems {
 
@@ -127,7 +128,10 @@ public:
                 for (double x : it->second) average->add(x);
         }
         const auto last = state.find("last_frame");
-        if (last != state.end() && last->second.size() == 3)
+        if (last != state.end() && last->second.size() != 3)
+            throw InputError(config_.scene() + ": the checkpoint's scene state 'last_frame' holds " +
+                             std::to_string(last->second.size()) + " values, not 3");
+        if (last != state.end())
             last_top_ = last->second[0], last_bottom_ = last->second[1], last_time_ = last->second[2];
     }
 

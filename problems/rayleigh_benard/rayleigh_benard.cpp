@@ -9,13 +9,13 @@
 #include <limits>
 #include <string>
 
+#include "emergent/block_average.hpp"
 #include "emergent/cell_pattern.hpp"
 #include "emergent/error.hpp"
 #include "emergent/lattice.hpp"
 #include "emergent/planar_noise.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
-#include "observe/block_average.hpp"
 
 namespace emergent::problems {
 
@@ -164,7 +164,10 @@ public:
         };
         for (double x : get("heat_flux_samples")) flux_.add(x);
         for (double x : get("cell_count_samples")) cells_.add(x);
-        const std::vector<double> last = get("last_frame");
+        const std::vector<double> last = get("last_frame");  // none: a checkpoint before it was kept
+        if (!last.empty() && last.size() != 4)
+            throw InputError(config_.scene() + ": the checkpoint's scene state 'last_frame' holds " +
+                             std::to_string(last.size()) + " values, not 4");
         if (last.size() == 4)
             have_last_ = last[0] != 0, last_bottom_ = last[1], last_top_ = last[2], last_time_ = last[3];
     }

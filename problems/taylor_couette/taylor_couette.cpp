@@ -233,6 +233,11 @@ public:
             const auto it = state.find(name);
             if (it != state.end()) *into = it->second;
         }
+        // The noise model pairs each bin's v_r with its noise (a damaged checkpoint if not).
+        if (last_vr_.size() != last_noise_.size())
+            throw InputError(config_.scene() + ": the checkpoint's last_radial_velocity has " +
+                             std::to_string(last_vr_.size()) + " bins, its noise " +
+                             std::to_string(last_noise_.size()));
     }
 
 private:

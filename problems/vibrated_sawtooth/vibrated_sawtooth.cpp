@@ -266,15 +266,25 @@ public:
         if (!flux_.restore(take("flux")) || !flux_small_.restore(take("flux_small")) ||
             !flux_big_.restore(take("flux_big")))
             throw InputError(c_.scene() + ": the checkpoint's flux averages are malformed");
-        last_sample_time_ = take("last_sample_time").at(0);
-        removed_drift_ = take("removed_drift").at(0);
+        auto scalar = [&](const std::string& key) {
+            const auto& v = take(key);
+            if (v.size() != 1)
+                throw InputError(c_.scene() + ": the checkpoint's scene state '" + key + "' holds " +
+                                 std::to_string(v.size()) + " values, not 1");
+            return v[0];
+        };
+        last_sample_time_ = scalar("last_sample_time");
+        removed_drift_ = scalar("removed_drift");
         for (int k = 0; k < 2; ++k) {
             const auto& sum = take("profile_sum_" + std::to_string(k));
             const auto& count = take("profile_count_" + std::to_string(k));
-            if (sum.size() != profile_sum_[k].size() || count.size() != sum.size())
+            if (sum.size() != profile_sum_[k].size() || count.size() != profile_sum_[k].size())
                 throw InputError(c_.scene() + ": the checkpoint's velocity profile has " +
-                                 std::to_string(sum.size()) + " bins, profile_bins is " +
-                                 std::to_string(profile_sum_[k].size()));
+                                 std::to_string(sum.size()) + " sums and " + std::to_string(count.size()) +
+                                 " counts, profile_bins is " + std::to_string(profile_sum_[k].size()));
+            for (double n : count)
+                if (n < 0)
+                    throw InputError(c_.scene() + ": the checkpoint's velocity profile has a negative count");
             profile_sum_[k] = sum;
             profile_count_[k] = count;
         }

@@ -11,7 +11,7 @@
 #include "decomposition/reductions.hpp"
 #include "emergent/execution.hpp"
 #include "gpu/device_memory_use.hpp"
-#include "observe/block_average.hpp"
+#include "emergent/block_average.hpp"
 
 namespace emergent::app {
 

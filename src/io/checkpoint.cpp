@@ -209,7 +209,16 @@ CheckpointHeader read_header(const std::string& path, MPI_Comm comm) {
         h.domain_cuts = read_doubles(root, "domain_cuts");
     }
     if (exists(root, "exchange_tallies")) h.exchange_tallies = read_doubles(root, "exchange_tallies");
+    // Every saved number is finite: the guards stop a run before a non-finite state is saved.
+    auto finite_all = [&](const std::string& what, const std::vector<double>& values) {
+        for (double x : values)
+            if (!std::isfinite(x)) throw InputError("'" + path + "': " + what + " holds a non-finite value");
+    };
+    finite_all("exchange_tallies", h.exchange_tallies);
     const std::vector<double> rows = read_doubles(root, "series");
+    if (rows.size() % kSeriesColumns != 0)
+        throw InputError("'" + path + "': series is not rows of " + std::to_string(kSeriesColumns));
+    finite_all("series", rows);
     for (std::size_t k = 0; k < rows.size() / kSeriesColumns; ++k) {
         const double* r = &rows[k * kSeriesColumns];
         ThermoSample t;
@@ -223,13 +232,17 @@ CheckpointHeader read_header(const std::string& path, MPI_Comm comm) {
     if (exists(root, "scene_state")) {
         H5Id group = open_group(root, "scene_state");
         for (const std::string& name : member_names(group))
-            h.scene_state[name] = read_doubles(group, name);
+            finite_all("scene_state '" + name + "'", h.scene_state[name] = read_doubles(group, name));
     }
     if (exists(root, "fields")) {
         H5Id group = open_group(root, "fields");
         for (const std::string& name : member_names(group)) {
             H5Id set(h5_check(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "checkpoint field"));
             h.fields[name] = {read_doubles(group, name), read_integer_attribute(set, "samples")};
+            finite_all("field '" + name + "'", h.fields[name].first);
+            if (h.fields[name].second < 0)
+                throw InputError("'" + path + "': field '" + name + "' has " +
+                                 std::to_string(h.fields[name].second) + " samples");
         }
     }
     return h;

@@ -2,6 +2,7 @@
 // Coarse-graining accumulator.
 #include "observe/field_accumulator.hpp"
 
+#include "emergent/error.hpp"
 #include "observe/field_sampling.hpp"
 
 #include <cmath>
@@ -36,8 +37,11 @@ std::vector<double> FieldAccumulator::global_sums(MPI_Comm comm) const {
 }
 
 void FieldAccumulator::restore(const std::vector<double>& sums, long long samples, int rank) {
+    // Sums kept by a run with another grid (a damaged checkpoint, or fields.grid changed).
     if (sums.size() != sums_.size())
-        throw std::logic_error("FieldAccumulator::restore: grid " + grid_.name + " changed");
+        throw InputError("field '" + grid_.name + "': the checkpoint's grid holds " + std::to_string(sums.size() / kSums) +
+                         " cells, this run's " + std::to_string(sums_.size() / kSums) +
+                         " (a continuation keeps the grids it was written with)");
     if (rank == 0) sums_ = sums;
     samples_ = samples;
 }

@@ -20,7 +20,7 @@
 #include "emergent/gpu.hpp"
 #include "emergent/simulation.hpp"
 #include "emergent/thermostat.hpp"
-#include "observe/block_average.hpp"
+#include "emergent/block_average.hpp"
 #include "support/fluid_start.hpp"
 
 using namespace emergent;

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "observe/block_average.hpp"
+#include "emergent/block_average.hpp"
 #include "support/scene_fixture.hpp"
 
 using namespace emergent;
