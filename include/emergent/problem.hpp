@@ -38,6 +38,10 @@ public:
     /// The particle count place_particles() will reach, asked after build() so that a run too
     /// large for the machine is refused before anything is allocated.
     virtual ParticleEstimate expected_particles(const Simulation& /*sim*/) const { return {}; }
+    /// The same from the parameters alone, asked before build(): for a scene whose build()
+    /// already holds every particle (a start drawn whole, the box fitted to it), so that a run
+    /// too large is refused before build() allocates it. Unknown (-1) by default.
+    virtual ParticleEstimate particles_from_parameters() const { return {}; }
     /// Grids the scene coarse-grains on, besides the run's `fields.grid` box grid.
     virtual std::vector<FieldGrid> field_grids(const Simulation& /*sim*/) const { return {}; }
     /// Called once as the measured phase begins (at step equilibration_steps, before its first

@@ -131,11 +131,13 @@ public:
         }
     }
 
-    ParticleEstimate expected_particles(const Simulation&) const override {
+    // build() draws every grain's start (the box's top follows from it): asked before it.
+    ParticleEstimate particles_from_parameters() const override {
         return {double(particle_count()), c_.integer("particles") > 0
                                               ? "particles=" + c_.text("particles")
                                               : "depth=" + c_.text("depth")};
     }
+    ParticleEstimate expected_particles(const Simulation&) const override { return particles_from_parameters(); }
 
     void place_particles(Simulation& sim) override {
         const auto seed = static_cast<std::uint64_t>(c_.integer("seed"));

@@ -220,6 +220,11 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
 
     Simulation sim(comm, run_settings(cfg));
     auto problem = req.problem->factory(cfg);
+    // A scene whose build() holds every particle is refused before it, where it can tell.
+    if (!req.restart) {
+        const ParticleEstimate early = problem->particles_from_parameters();
+        if (early.count >= 0) check_memory(comm, cfg.scene(), early.count, early.set_by, {});
+    }
     problem->build(sim);
     // Too large for the nodes' memory: refused before particles and grids are allocated.
     std::vector<FieldGrid> grids;  // allocated only when fields are recorded
