@@ -56,51 +56,33 @@ if bad:
     print("FAIL: " + "; ".join(bad)); sys.exit(1)
 print("ok: 2-rank drum continued bit for bit on 2 ranks, to round-off on 3 and 1")
 PY
-# A damaged owner: one line naming it.
-/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad.h5" <<'PY'
-import shutil, sys, h5py
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    f["checkpoint/bodies/owner_rank"][0] = 7
-PY
-"$expect" "bodies/owner_rank 7 is not a rank of this run" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad.h5" -o "$dir/bad"
-# A particle naming a body the checkpoint lacks, continued on another grid (where spheres go
-# with their bodies by body id): one line naming the particle.
-/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_body.h5" <<'PY'
-import shutil, sys, h5py, numpy as np
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    body = f["checkpoint/body"]
-    k = int(np.flatnonzero(body[:] >= 0)[-1])
-    body[k] = 10 ** 9
-PY
-"$expect" "particle [0-9]+ names body 1000000000, which the checkpoint lacks" "$mpirun" -q --allow-run-as-root --oversubscribe -np 3 "$exe" run --restart "$dir/bad_body.h5" -o "$dir/bad_body"
-# The same on the grid that wrote it (where spheres go to their saved owners).
-"$expect" "particle [0-9]+ names body 1000000000, which the checkpoint lacks" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_body.h5" -o "$dir/bad_body2"
-# A sphere whose saved owner is another rank than its body's: one line naming the sphere.
-/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_owner.h5" <<'PY'
+# Damaged copies of the 300-step checkpoint, each refused with one line naming the item.
+damage() {  # damage NAME PYTHON-STATEMENT (c: the checkpoint group)
+  /usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/$1.h5" "$2" <<'PY'
 import shutil, sys, h5py, numpy as np
 shutil.copy(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "r+") as f:
     c = f["checkpoint"]
-    body, owner = c["body"][:], c["owner_rank"][:]
-    k = int(np.flatnonzero(body >= 0)[0])
-    c["owner_rank"][k] = 1 - owner[k]
+    exec(sys.argv[3])
 PY
-"$expect" "particle [0-9]+ of body [0-9]+ is not on its body's rank" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_owner.h5" -o "$dir/bad_owner"
-# A body of a kind the scene does not declare: one line naming the body.
-/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_kind.h5" <<'PY'
-import shutil, sys, h5py
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    f["checkpoint/bodies/kind"][0] = 9
-PY
-"$expect" "body 0 has kind 9, which the scene does not declare" "$mpirun" -q --allow-run-as-root --oversubscribe -np 2 "$exe" run --restart "$dir/bad_kind.h5" -o "$dir/bad_kind"
-# A body whose orientation is no unit quaternion (NO_SQUISH keeps |q| = 1 to round-off): one line.
-/usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/bad_q.h5" <<'PY'
-import shutil, sys, h5py
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    f["checkpoint/bodies/orientation"][3] = [2.0, 0.0, 0.0, 0.0]
-PY
-"$expect" "body 3 has an orientation that is not a unit quaternion" "$mpirun" -q --allow-run-as-root --oversubscribe -np 3 "$exe" run --restart "$dir/bad_q.h5" -o "$dir/bad_q"
+}
+refused() {  # refused NP NAME PATTERN
+  "$expect" "$3" "$mpirun" -q --allow-run-as-root --oversubscribe -np "$1" "$exe" run --restart "$dir/$2.h5" -o "$dir/out_$2_$1"
+}
+# An owner that is no rank of the run.
+damage bad 'c["bodies/owner_rank"][0] = 7'
+refused 2 bad "bodies/owner_rank 7 is not a rank of this run"
+# A particle naming a body the checkpoint lacks, on another grid (where spheres go with their
+# bodies by body id) and on the grid that wrote it (where they go to their saved owners).
+damage bad_body 'k = int(np.flatnonzero(c["body"][:] >= 0)[-1]); c["body"][k] = 10 ** 9'
+refused 3 bad_body "particle [0-9]+ names body 1000000000, which the checkpoint lacks"
+refused 2 bad_body "particle [0-9]+ names body 1000000000, which the checkpoint lacks"
+# A sphere whose saved owner is another rank than its body's.
+damage bad_owner 'k = int(np.flatnonzero(c["body"][:] >= 0)[0]); c["owner_rank"][k] = 1 - c["owner_rank"][k]'
+refused 2 bad_owner "particle [0-9]+ of body [0-9]+ is not on its body's rank"
+# A body of a kind the scene does not declare.
+damage bad_kind 'c["bodies/kind"][0] = 9'
+refused 2 bad_kind "body 0 has kind 9, which the scene does not declare"
+# A body whose orientation is no unit quaternion (NO_SQUISH keeps |q| = 1 to round-off).
+damage bad_q 'c["bodies/orientation"][3] = [2.0, 0.0, 0.0, 0.0]'
+refused 3 bad_q "body 3 has an orientation that is not a unit quaternion"
