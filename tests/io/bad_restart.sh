@@ -18,14 +18,8 @@ head -c 3000 "$dir/checkpoint.h5" >"$dir/truncated.h5"
 # negative diameter, an overflowing image, a negative step or NaN time ran on with exit 0, a
 # NaN position stopped the run as a run-time fault, n_global -1 was an internal error): one
 # line naming the item, exit status 2.
-damage() {  # damage NAME PYTHON-STATEMENT (c: the checkpoint group)
-  /usr/bin/python3 - "$dir/checkpoint.h5" "$dir/$1.h5" "$2" <<'PY'
-import shutil, sys, h5py, numpy as np
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    c = f["checkpoint"]
-    exec(sys.argv[3])
-PY
+damage() {  # damage NAME PYTHON-STATEMENT (damage_checkpoint.py)
+  /usr/bin/python3 "$(dirname "$0")/damage_checkpoint.py" "$dir/checkpoint.h5" "$dir/$1.h5" "$2"
 }
 check() {  # check NAME PATTERN PYTHON-STATEMENT
   damage "$1" "$3"

@@ -15,18 +15,8 @@ for scene in rayleigh-benard capsid-assembly vibrated-sawtooth taylor-couette pl
     -o "$dir/$scene" >/dev/null
   "$exe" run --restart "$dir/$scene/checkpoint.h5" --set steps=220 -o "$dir/$scene.cont" >/dev/null
 done
-check() {  # check SCENE NAME PATTERN PYTHON-STATEMENT (c: the checkpoint group, s: its scene state)
-  /usr/bin/python3 - "$dir/$1/checkpoint.h5" "$dir/$2.h5" "$4" <<'PY'
-import shutil, sys, h5py, numpy as np
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    c = f["checkpoint"]
-    s = c.get("scene_state")
-    def replace(name, values):
-        del s[name]
-        s[name] = np.asarray(values, dtype=float)
-    exec(sys.argv[3])
-PY
+check() {  # check SCENE NAME PATTERN PYTHON-STATEMENT (damage_checkpoint.py)
+  /usr/bin/python3 "$(dirname "$0")/damage_checkpoint.py" "$dir/$1/checkpoint.h5" "$dir/$2.h5" "$4"
   "$expect" "$3" "$exe" run --restart "$dir/$2.h5" --set steps=220 -o "$dir/out_$2"
 }
 check rayleigh-benard field_samples "field 'box' has -4 samples" 'c["fields/box"].attrs["samples"] = -4'

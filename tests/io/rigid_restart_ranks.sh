@@ -57,14 +57,8 @@ if bad:
 print("ok: 2-rank drum continued bit for bit on 2 ranks, to round-off on 3 and 1")
 PY
 # Damaged copies of the 300-step checkpoint, each refused with one line naming the item.
-damage() {  # damage NAME PYTHON-STATEMENT (c: the checkpoint group)
-  /usr/bin/python3 - "$dir/first/checkpoint.h5" "$dir/$1.h5" "$2" <<'PY'
-import shutil, sys, h5py, numpy as np
-shutil.copy(sys.argv[1], sys.argv[2])
-with h5py.File(sys.argv[2], "r+") as f:
-    c = f["checkpoint"]
-    exec(sys.argv[3])
-PY
+damage() {  # damage NAME PYTHON-STATEMENT (damage_checkpoint.py)
+  /usr/bin/python3 "$(dirname "$0")/damage_checkpoint.py" "$dir/first/checkpoint.h5" "$dir/$1.h5" "$2"
 }
 refused() {  # refused NP NAME PATTERN
   "$expect" "$3" "$mpirun" -q --allow-run-as-root --oversubscribe -np "$1" "$exe" run --restart "$dir/$2.h5" -o "$dir/out_$2_$1"
