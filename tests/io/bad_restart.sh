@@ -37,3 +37,8 @@ check n_global "checkpoint attribute 'n_global' is -1" 'c.attrs["n_global"] = -1
 check rows "damaged checkpoint \(dataset 'position' is not [0-9]+ x 3, the rows the checkpoint records\)" \
   'c.attrs["n_global"] = int(c.attrs["n_global"]) + 1'
 check missing "damaged checkpoint \(no dataset 'velocity'\)" 'del c["velocity"]'
+check ranks "checkpoint attribute 'ranks' is 0" 'c.attrs["ranks"] = 0'
+check rebuilds "checkpoint attribute 'rebuilds' is -2" 'c.attrs["rebuilds"] = -2'
+check series_rows "series is not rows of [0-9]+" \
+  'n = c["series"].size; del c["series"]; c["series"] = np.zeros(n + 1)'
+check series_nan "series holds a non-finite value" 'c["series"][0, 1] = np.nan'

@@ -80,3 +80,12 @@ refused 2 bad_kind "body 0 has kind 9, which the scene does not declare"
 # A body whose orientation is no unit quaternion (NO_SQUISH keeps |q| = 1 to round-off).
 damage bad_q 'c["bodies/orientation"][3] = [2.0, 0.0, 0.0, 0.0]'
 refused 3 bad_q "body 3 has an orientation that is not a unit quaternion"
+# Body counts and motion no run writes.
+damage bad_nb 'c["bodies"].attrs["n_global"] = -1'
+refused 2 bad_nb "checkpoint attribute 'bodies/n_global' is -1"
+damage bad_bv 'c["bodies/velocity"][2, 0] = np.nan'
+refused 2 bad_bv "body 2 has a non-finite velocity"
+damage bad_bimage 'c["bodies/image"][2, 1] = 2**31 - 1'
+refused 2 bad_bimage "body 2 has an image beyond any run's"
+damage bad_bp 'c["bodies/angular_momentum"][2, 3] = np.inf'
+refused 1 bad_bp "body 2 has a non-finite angular_momentum"
