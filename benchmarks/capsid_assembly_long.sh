@@ -126,6 +126,12 @@ for run in sys.argv[1:]:
     first_shell = f"{t[np.argmax(shells[:, 0] > 0)]:.0f} tau" if (shells[:, 0] > 0).any() else "none yet"
     print(f"# lag (first mass in clusters of 6+): {lag}; first complete shell: {first_shell}; "
           f"largest cluster ever sampled: {big[:, 0].max():.0f}")
+    # The paper's half-time: when the shells first held half the mass they hold at the end. While
+    # a run still adds shells this is a lower bound of the final one.
+    shell_mass = m[:, 4]
+    if shell_mass[-1] > 0:
+        half = t[np.argmax(shell_mass >= 0.5 * shell_mass[-1])]
+        print(f"# mass in complete shells at the end: {shell_mass[-1]:.3f}; half of it first at {half:.0f} tau")
     # The tallies' interval: the latest checkpoint's events_every (0: the samples').
     with h5py.File(os.path.join(run, "checkpoint.h5"), "r") as h:
         cfg = h["checkpoint/config"].attrs
