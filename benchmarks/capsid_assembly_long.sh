@@ -18,7 +18,8 @@
 #       (e.g. "skin=1.4", the faster list skin at DT=0.02).
 #   benchmarks/capsid_assembly_long.sh table RUN_DIR...      mass fractions by size group at
 #       every tenth of the run so far, the lag (first mass in clusters of 6 or more), the first
-#       complete shell, the last sample; and P_n = g / (g + l) by size from the tallies at the
+#       complete shell, the last sample, when the shells first held half the mass they hold
+#       at the end (the paper's half-time; a lower bound while shells still come); and P_n = g / (g + l) by size from the tallies at the
 #       last sample (since the events interval was last set), at the interval and twice it.
 #   benchmarks/capsid_assembly_long.sh at TIME RUN_DIR...   one row per run at its last sample at
 #       or before TIME tau: e, seed, mass fractions, largest, shells, clusters of 6+, the lag and the
