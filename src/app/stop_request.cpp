@@ -23,6 +23,14 @@ StopRequest::StopRequest(MPI_Comm comm, bool active) : active_(active) {
     action.sa_flags = SA_RESTART;  // an interrupted write or MPI call carries on
     sigaction(SIGUSR1, &action, &previous_usr1_);
     sigaction(SIGTERM, &action, &previous_term_);
+    // Ctrl-C stops the same way, once: the handler gives way to the default action, so a second
+    // Ctrl-C ends the process at once. A SIGINT ignored from the start (a non-interactive
+    // shell's background job: meant to be immune to the terminal's Ctrl-C) stays ignored.
+    sigaction(SIGINT, nullptr, &previous_int_);
+    if (previous_int_.sa_handler != SIG_IGN) {
+        action.sa_flags |= SA_RESETHAND;
+        sigaction(SIGINT, &action, nullptr);
+    }
 }
 
 StopRequest::~StopRequest() {
@@ -35,6 +43,7 @@ StopRequest::~StopRequest() {
     }
     sigaction(SIGUSR1, &previous_usr1_, nullptr);
     sigaction(SIGTERM, &previous_term_, nullptr);
+    sigaction(SIGINT, &previous_int_, nullptr);
 }
 
 bool StopRequest::agreed() {
@@ -57,6 +66,7 @@ int StopRequest::signal() const { return result_; }
 std::string signal_name(int sig) {
     if (sig == SIGUSR1) return "SIGUSR1";
     if (sig == SIGTERM) return "SIGTERM";
+    if (sig == SIGINT) return "SIGINT";
     return "signal " + std::to_string(sig);
 }
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-// A run asked to stop early (SIGUSR1, SIGTERM: a batch system's time limit, a user) checkpoints
+// A run asked to stop early (SIGUSR1, SIGTERM: a batch system's time limit; SIGINT: Ctrl-C) checkpoints
 // and ends with its own exit code, so that a job script can continue it.
 #pragma once
 
@@ -11,12 +11,12 @@
 
 namespace emergent::app {
 
-/// Catches SIGUSR1 and SIGTERM while it lives (the previous handlers come back after) and lets
-/// every rank agree on the step at which to stop. Signals reach the ranks at different steps
-/// (srun and mpirun forward them one task at a time), so the ranks vote: each step completes the
-/// previous step's non-blocking reduction of "a signal arrived here" and starts the next one.
-/// All ranks therefore see a request at the same step, one step after the last rank was signalled,
-/// and the reduction is overlapped with a whole step of work.
+/// Catches SIGUSR1, SIGTERM and a first SIGINT while it lives (the previous handlers come back
+/// after) and lets every rank agree on the step at which to stop. Signals reach the ranks at
+/// different steps (srun and mpirun forward them one task at a time), so the ranks vote: each
+/// step completes the previous step's non-blocking reduction of "a signal arrived here" and
+/// starts the next one. All ranks therefore see a request at the same step, one step after the
+/// last rank was signalled, and the reduction is overlapped with a whole step of work.
 class StopRequest {
 public:
     /// Inactive (installs nothing, never stops) when `active` is false: a run with nowhere to
@@ -38,10 +38,10 @@ private:
     int ranks_ = 1;
     MPI_Request pending_ = MPI_REQUEST_NULL;
     int vote_ = 0, result_ = 0;
-    struct sigaction previous_usr1_ {}, previous_term_ {};
+    struct sigaction previous_usr1_ {}, previous_term_ {}, previous_int_ {};
 };
 
-/// "SIGUSR1", "SIGTERM", or "signal N".
+/// "SIGUSR1", "SIGTERM", "SIGINT", or "signal N".
 std::string signal_name(int sig);
 
 /// Thrown after a run stopped on request has written its checkpoint and closed its files; main()
