@@ -215,7 +215,8 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
     prepare_output_dir(req.output_dir, comm);
     check_summary_path(req.summary_json, comm);
-    // From here a signal asks for a checkpoint at the first step it can be written.
+    // From here SIGUSR1 and SIGTERM ask for a checkpoint at the first step it can be written
+    // (Ctrl-C from the end of the set-up on).
     StopRequest stop_request(comm, !req.output_dir.empty());
 
     Simulation sim(comm, run_settings(cfg));
@@ -257,6 +258,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         if (estimate.count < 0) check_memory(comm, cfg.scene(), double(placed), "", grids);
         sim.initialise();
     }
+    stop_request.catch_interrupt();
     io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim), problem.get());
     if (req.restart) output.restore_fields(*req.restart, sim.rank());
     output.on_step(sim);

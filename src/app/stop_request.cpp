@@ -23,14 +23,21 @@ StopRequest::StopRequest(MPI_Comm comm, bool active) : active_(active) {
     action.sa_flags = SA_RESTART;  // an interrupted write or MPI call carries on
     sigaction(SIGUSR1, &action, &previous_usr1_);
     sigaction(SIGTERM, &action, &previous_term_);
-    // Ctrl-C stops the same way, once: the handler gives way to the default action, so a second
-    // Ctrl-C ends the process at once. A SIGINT ignored from the start (a non-interactive
-    // shell's background job: meant to be immune to the terminal's Ctrl-C) stays ignored.
+}
+
+void StopRequest::catch_interrupt() {
+    if (!active_ || interrupt_caught_) return;
+    // Once, as the others: the handler gives way to the default action, so a second Ctrl-C
+    // ends the process at once. A SIGINT ignored from the start (a non-interactive shell's
+    // background job: meant to be immune to the terminal's Ctrl-C) stays ignored.
     sigaction(SIGINT, nullptr, &previous_int_);
-    if (previous_int_.sa_handler != SIG_IGN) {
-        action.sa_flags |= SA_RESETHAND;
-        sigaction(SIGINT, &action, nullptr);
-    }
+    interrupt_caught_ = true;
+    if (previous_int_.sa_handler == SIG_IGN) return;
+    struct sigaction action {};
+    action.sa_handler = note_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART | SA_RESETHAND;
+    sigaction(SIGINT, &action, nullptr);
 }
 
 StopRequest::~StopRequest() {
@@ -43,7 +50,7 @@ StopRequest::~StopRequest() {
     }
     sigaction(SIGUSR1, &previous_usr1_, nullptr);
     sigaction(SIGTERM, &previous_term_, nullptr);
-    sigaction(SIGINT, &previous_int_, nullptr);
+    if (interrupt_caught_) sigaction(SIGINT, &previous_int_, nullptr);
 }
 
 bool StopRequest::agreed() {

@@ -11,12 +11,13 @@
 
 namespace emergent::app {
 
-/// Catches SIGUSR1, SIGTERM and a first SIGINT while it lives (the previous handlers come back
-/// after) and lets every rank agree on the step at which to stop. Signals reach the ranks at
-/// different steps (srun and mpirun forward them one task at a time), so the ranks vote: each
-/// step completes the previous step's non-blocking reduction of "a signal arrived here" and
-/// starts the next one. All ranks therefore see a request at the same step, one step after the
-/// last rank was signalled, and the reduction is overlapped with a whole step of work.
+/// Catches SIGUSR1 and SIGTERM while it lives, and a first SIGINT from catch_interrupt() on (the
+/// previous handlers come back after), and lets every rank agree on the step at which to stop.
+/// Signals reach the ranks at different steps (srun and mpirun forward them one task at a time),
+/// so the ranks vote: each step completes the previous step's non-blocking reduction of "a
+/// signal arrived here" and starts the next one. All ranks therefore see a request at the same
+/// step, one step after the last rank was signalled, and the reduction is overlapped with a
+/// whole step of work.
 class StopRequest {
 public:
     /// Inactive (installs nothing, never stops) when `active` is false: a run with nowhere to
@@ -26,6 +27,10 @@ public:
     StopRequest(const StopRequest&) = delete;
     StopRequest& operator=(const StopRequest&) = delete;
 
+    /// Ctrl-C too, from here on: called once the set-up is done. During a set-up (which can be
+    /// long, and has written nothing yet) Ctrl-C ends the process at once; SIGUSR1 and SIGTERM,
+    /// a batch system's, wait for the first step and its checkpoint.
+    void catch_interrupt();
     /// Called by every rank once per step, in step: true on all ranks alike when any rank has
     /// been signalled.
     bool agreed();
@@ -38,6 +43,7 @@ private:
     int ranks_ = 1;
     MPI_Request pending_ = MPI_REQUEST_NULL;
     int vote_ = 0, result_ = 0;
+    bool interrupt_caught_ = false;
     struct sigaction previous_usr1_ {}, previous_term_ {}, previous_int_ {};
 };
 
