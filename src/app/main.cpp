@@ -29,7 +29,10 @@ const char* kUsage =
     "       emergent run <scene> [--preset P] [--config file.ini]... [--set key=value]...\n"
     "                            [-o DIR] [--summary-json FILE] [--checkpoint-every N]\n"
     "       emergent run --restart DIR/checkpoint.h5 [--set key=value]... [-o DIR]\n"
-    "       emergent --plugin my_scene.so <command> ...   (out-of-tree scenes)\n";
+    "       emergent --plugin my_scene.so <command> ...   (out-of-tree scenes)\n"
+    "A run with -o DIR stops at the next step on SIGUSR1, SIGTERM or Ctrl-C, writes\n"
+    "DIR/checkpoint.h5 and says how to continue it.\n"
+    "Exit status: 0 done; 2 bad input; 3 a run-time fault; 4 an I/O failure; 5 stopped on request.\n";
 
 const ProblemInfo& find_scene(const std::string& name) {
     const ProblemInfo* info = ProblemRegistry::instance().find(name);
