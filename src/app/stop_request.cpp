@@ -27,9 +27,10 @@ StopRequest::StopRequest(MPI_Comm comm, bool active) : active_(active) {
 
 void StopRequest::catch_interrupt() {
     if (!active_ || interrupt_caught_) return;
-    // Once, as the others: the handler gives way to the default action, so a second Ctrl-C
-    // ends the process at once. A SIGINT ignored from the start (a non-interactive shell's
-    // background job: meant to be immune to the terminal's Ctrl-C) stays ignored.
+    // Once: the handler gives way to the default action, so a second Ctrl-C ends the process
+    // at once (a checkpoint being written is a temporary file until renamed: the last one
+    // stays whole). A SIGINT ignored from the start (a non-interactive shell's background job,
+    // meant to be immune to the terminal's Ctrl-C) stays ignored.
     sigaction(SIGINT, nullptr, &previous_int_);
     interrupt_caught_ = true;
     if (previous_int_.sa_handler == SIG_IGN) return;
