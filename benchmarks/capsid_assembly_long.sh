@@ -132,7 +132,7 @@ for run in sys.argv[1:]:
     shell_mass = m[:, 4]
     if shell_mass[-1] > 0:
         half = t[np.argmax(shell_mass >= 0.5 * shell_mass[-1])]
-        print(f"# mass in complete shells at the end: {shell_mass[-1]:.3f}; half of it first at {half:.0f} tau")
+        print(f"# mass in complete shells at the end: {shell_mass[-1]:.3f}; half of it first at {half:g} tau")
     # The tallies' interval: the latest checkpoint's events_every (0: the samples').
     with h5py.File(os.path.join(run, "checkpoint.h5"), "r") as h:
         cfg = h["checkpoint/config"].attrs
