@@ -10,6 +10,15 @@ volatile std::sig_atomic_t g_signal = 0;
 
 extern "C" void note_signal(int sig) { g_signal = sig; }
 
+/// The action that notes a signal for the next vote; an interrupted write or MPI call carries on.
+struct sigaction noting(int extra_flags) {
+    struct sigaction action {};
+    action.sa_handler = note_signal;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = SA_RESTART | extra_flags;
+    return action;
+}
+
 }  // namespace
 
 StopRequest::StopRequest(MPI_Comm comm, bool active) : active_(active) {
@@ -17,10 +26,7 @@ StopRequest::StopRequest(MPI_Comm comm, bool active) : active_(active) {
     g_signal = 0;
     MPI_Comm_dup(comm, &comm_);  // the votes never meet the step's own collectives
     MPI_Comm_size(comm_, &ranks_);
-    struct sigaction action {};
-    action.sa_handler = note_signal;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART;  // an interrupted write or MPI call carries on
+    const struct sigaction action = noting(0);
     sigaction(SIGUSR1, &action, &previous_usr1_);
     sigaction(SIGTERM, &action, &previous_term_);
 }
@@ -34,10 +40,7 @@ void StopRequest::catch_interrupt() {
     sigaction(SIGINT, nullptr, &previous_int_);
     interrupt_caught_ = true;
     if (previous_int_.sa_handler == SIG_IGN) return;
-    struct sigaction action {};
-    action.sa_handler = note_signal;
-    sigemptyset(&action.sa_mask);
-    action.sa_flags = SA_RESTART | SA_RESETHAND;
+    const struct sigaction action = noting(SA_RESETHAND);
     sigaction(SIGINT, &action, nullptr);
 }
 

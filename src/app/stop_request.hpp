@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// A run asked to stop early (SIGUSR1, SIGTERM: a batch system's time limit; SIGINT: Ctrl-C) checkpoints
-// and ends with its own exit code, so that a job script can continue it.
+// A run asked to stop early (SIGUSR1, SIGTERM: a batch system's time limit; SIGINT: Ctrl-C)
+// checkpoints and ends with its own exit code, so that a job script can continue it.
 #pragma once
 
 #include <mpi.h>
