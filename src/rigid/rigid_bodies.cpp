@@ -3,6 +3,8 @@
 #include "rigid/rigid_bodies.hpp"
 
 #include <stdexcept>
+#include <unordered_map>
+#include <vector>
 
 #include "emergent/error.hpp"
 #include "emergent/execution.hpp"
@@ -107,32 +109,45 @@ void RigidBodies::place_at(const exec::Target& target, const Arrays& a, const Co
     exec::for_each(target, bodies_.n_owned(), PlaceAt{a.state, a.frames, at, x, v});
 }
 
-void RigidBodies::index_constituents(const ParticleStore& store) {
+namespace {
+/// Owned bodies by id, and where each one's constituents lie in a list of all of them (body b's
+/// from first[b] to first[b + 1]); bad_kind is the first body whose kind has no frame (or none:
+/// the count of bodies, and the layout stops there).
+struct ConstituentLayout {
     std::unordered_map<std::int64_t, std::uint32_t> local;
-    first_.assign(bodies_.n_owned() + 1, 0);
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        local[bodies_.id[b]] = static_cast<std::uint32_t>(b);
-        first_[b + 1] = first_[b] + static_cast<std::uint32_t>(frames_[bodies_.species[b]].positions.size());
+    std::vector<std::uint32_t> first{0};
+    std::size_t bad_kind = 0;
+};
+
+ConstituentLayout constituent_layout(const ParticleStore& bodies, const std::vector<BodyFrame>& frames) {
+    ConstituentLayout l;
+    for (l.bad_kind = 0; l.bad_kind < bodies.n_owned(); ++l.bad_kind) {
+        const int kind = bodies.species[l.bad_kind];
+        if (kind < 0 || static_cast<std::size_t>(kind) >= frames.size()) break;
+        l.local[bodies.id[l.bad_kind]] = static_cast<std::uint32_t>(l.bad_kind);
+        l.first.push_back(l.first.back() + static_cast<std::uint32_t>(frames[kind].positions.size()));
     }
+    return l;
+}
+}  // namespace
+
+void RigidBodies::index_constituents(const ParticleStore& store) {
+    ConstituentLayout layout = constituent_layout(bodies_, frames_);
+    first_ = std::move(layout.first);
     index_.assign(first_.back(), ~0u);
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
         if (store.body[i] < 0) continue;
-        const std::uint32_t b = local.at(store.body[i]);
+        const std::uint32_t b = layout.local.at(store.body[i]);
         index_[first_[b] + (store.id[i] - bodies_.body[b])] = static_cast<std::uint32_t>(i);
     }
 }
 
 std::string RigidBodies::check_constituents(const ParticleStore& store) const {
-    std::unordered_map<std::int64_t, std::size_t> local;
-    std::vector<std::size_t> first(bodies_.n_owned() + 1, 0);
-    for (std::size_t b = 0; b < bodies_.n_owned(); ++b) {
-        const int kind = bodies_.species[b];
-        if (kind < 0 || static_cast<std::size_t>(kind) >= frames_.size())
-            return "body " + std::to_string(bodies_.id[b]) + " has kind " + std::to_string(kind) +
-                   ", which the scene does not declare";
-        local[bodies_.id[b]] = b;
-        first[b + 1] = first[b] + frames_[kind].positions.size();
-    }
+    const ConstituentLayout layout = constituent_layout(bodies_, frames_);
+    if (layout.bad_kind < bodies_.n_owned())
+        return "body " + std::to_string(bodies_.id[layout.bad_kind]) + " has kind " +
+               std::to_string(bodies_.species[layout.bad_kind]) + ", which the scene does not declare";
+    const std::vector<std::uint32_t>& first = layout.first;
     auto stray = [](std::int64_t particle, std::int64_t body) {
         return "particle " + std::to_string(particle) + " of body " + std::to_string(body) +
                " is not on its body's rank";
@@ -140,8 +155,8 @@ std::string RigidBodies::check_constituents(const ParticleStore& store) const {
     std::vector<char> seen(first.back(), 0);
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
         if (store.body[i] < 0) continue;
-        const auto it = local.find(store.body[i]);
-        if (it == local.end()) return stray(store.id[i], store.body[i]);
+        const auto it = layout.local.find(store.body[i]);
+        if (it == layout.local.end()) return stray(store.id[i], store.body[i]);
         const std::size_t b = it->second;
         const std::int64_t offset = store.id[i] - bodies_.body[b];
         if (offset < 0 || static_cast<std::size_t>(offset) >= first[b + 1] - first[b])
