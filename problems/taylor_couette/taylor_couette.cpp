@@ -121,7 +121,11 @@ public:
         const double volume = 0.5 * angle * (r_o_ * r_o_ - r_i_ * r_i_) * length_;
         const auto target = static_cast<std::int64_t>(std::llround(config_.real("density") * volume));
         const bool periodic[3] = {false, false, periodic_ends_};
-        fill_lattice_with_count(sim, {-r_o_, -r_o_, 0}, {r_o_, r_o_, length_}, target, periodic, inside);
+        // The lattice spans the box across the axis: the wedge's bounding box, not the whole
+        // annulus's (the count is taken ~50 times while the spacing is fitted).
+        const Box& box = sim.box();
+        fill_lattice_with_count(sim, {box.lo.x, box.lo.y, 0}, {box.hi.x, box.hi.y, length_}, target,
+                                periodic, inside);
         const double t0 = config_.real("initial_temperature");
         sim.assign_thermal_velocities(t0 > 0 ? t0 : config_.real("wall_temperature"),
                                       static_cast<std::uint64_t>(config_.integer("seed")));
