@@ -100,6 +100,9 @@ public:
     /// recomputed next).
     void permute_owned(const std::vector<std::uint32_t>& order, unsigned fields = kAllFields);
 
+    /// Room for n particles in every array, without changing the size.
+    void reserve(std::size_t n);
+
     /// Releases capacity beyond the present size (after the particles are placed: growth by
     /// appending one at a time may leave arrays nearly twice as large as needed).
     void fit_capacity();

@@ -25,6 +25,10 @@ void ParticleStore::resize_all(std::size_t n) {
     for_each_array([&](const auto& entry, auto& array) { grow(array, n, entry.fill); });
 }
 
+void ParticleStore::reserve(std::size_t n) {
+    for_each_array([&](const auto&, auto& array) { array.reserve(n); });
+}
+
 void ParticleStore::fit_capacity() {
     for_each_array([](const auto&, auto& array) {
         std::decay_t<decltype(array)>(array.begin(), array.end()).swap(array);

@@ -957,6 +957,11 @@ void Simulation::add_particle(const Vec3& x, const Vec3& v, int species, std::in
                          " has mass 0: such points exist only as constituents of rigid bodies");
     if (!(diameter > 0)) throw InputError("particle diameter " + std::to_string(diameter) + " must be > 0");
     e.host_reads(kAllFields);
+    // A set-up adds its particles one at a time: room doubles here, where the store's own
+    // growth by 1/32 (kept for the run's migrations) would copy every array ~30 times into
+    // fresh pages. The store is fitted to its size when the set-up ends.
+    if (e.store.n_owned() + 1 > e.store.position.capacity())
+        e.store.reserve(std::max<std::size_t>(1024, 2 * (e.store.n_owned() + 1)));
     e.store.add_owned(x, v, species, id, diameter);
     e.host_wrote(kAllFields);
 }
