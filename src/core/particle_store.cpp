@@ -63,11 +63,6 @@ void ParticleStore::add_owned(const Vec3& x, const Vec3& v, int species_index,
                               std::int64_t global_id, Real particle_diameter) {
     if (deferred_) throw std::logic_error("ParticleStore::add_owned during a deferred resize");
     resize_all(n_owned_);  // drops any ghosts, so the new element starts from the fill values
-    // A set-up adds its particles one at a time: room doubles here, where grow's 1/32 would copy
-    // every array ~30 times into fresh pages (two thirds of a 2.4e6-atom set-up's time). The
-    // store is fitted to its size when the set-up ends.
-    if (n_owned_ + 1 > position.capacity())
-        for_each_array([&](const auto&, auto& array) { array.reserve(std::max<std::size_t>(64, 2 * (n_owned_ + 1))); });
     resize_all(n_owned_ + 1);
     position[n_owned_] = x;
     velocity[n_owned_] = v;
