@@ -200,3 +200,25 @@ TEST(ParticleMirror, TablesAreCopiedWhenTheyChange) {
     EXPECT_EQ(mirror.table(0, mass)[2], 15.0);
     EXPECT_EQ(exec::transfers().arrays - before.arrays, 2u);
 }
+
+// reserve makes room in every array without changing the particles, so a set-up's additions
+// up to that count move nothing; fit_capacity gives the room back.
+TEST(ParticleStore, ReserveMakesRoomWithoutChangingParticles) {
+    ParticleStore s = random_store(10, 7, false);
+    const ParticleStore before = s;
+    s.reserve(1000);
+    EXPECT_TRUE(same_bits(s, before));
+    EXPECT_EQ(s.n_owned(), 10u);
+    EXPECT_GE(s.position.capacity(), 1000u);
+    EXPECT_GE(s.velocity.capacity(), 1000u);
+    EXPECT_GE(s.force.capacity(), 1000u);
+    EXPECT_GE(s.id.capacity(), 1000u);
+    const Vec3* data = s.position.data();
+    for (int i = 0; i < 990; ++i) s.add_owned({0, 0, 0}, {0, 0, 0}, 0, 2000 + i);
+    EXPECT_EQ(s.position.data(), data);
+    EXPECT_EQ(s.n_owned(), 1000u);
+    s.reserve(10);  // less than held: nothing changes
+    EXPECT_EQ(s.position.data(), data);
+    s.fit_capacity();
+    EXPECT_EQ(s.position.capacity(), 1000u);
+}
