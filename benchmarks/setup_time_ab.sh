@@ -6,6 +6,7 @@
 # usage: benchmarks/setup_time_ab.sh ROUNDS EXE_A EXE_B SCENE [--preset P] [--set key=value]...
 set -euo pipefail
 cd "$(dirname "$0")/.."
+[ $# -ge 4 ] || { echo "usage: benchmarks/setup_time_ab.sh ROUNDS EXE_A EXE_B SCENE [--preset P] [--set key=value]..." >&2; exit 2; }
 rounds=$1 exe_a=$2 exe_b=$3
 shift 3
 . benchmarks/common.sh
