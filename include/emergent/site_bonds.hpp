@@ -17,11 +17,19 @@ class Simulation;
 /// Bodies i and j are bonded when, for one contact face of i, every site of that face lies
 /// within `bond_range` of j's site of the partner type (paper: all four site pairs of two faces
 /// within r_b = 0.5). Site type k is species first_site + k.
+///
+/// Two faces are in contact when every site pair lies within `contact_range` (>= bond_range).
+/// Bonds define the clusters; contacts decide whether a cluster is closed: in a closed shell
+/// at temperature a bond or two is always stretched a little past r_b for a moment, and a
+/// count of bonds alone then misses the shell, while a missing member leaves its neighbours'
+/// faces with no partner site nearer than the closest faces that do not meet in the shell
+/// (1.6-1.7 for the PW design; tests/physics/test_capsomer_shell.cpp).
 struct SiteBondRule {
     int first_site = 1;
     std::vector<int> partner;
     std::vector<std::vector<int>> faces;
     double bond_range = 0.5;
+    double contact_range = 1.0;
 };
 
 /// One site: where it is, its type (not species) and the id of its body.
@@ -36,15 +44,16 @@ struct BondCensus {
     std::vector<std::int64_t> bodies;  ///< body ids, ascending
     std::vector<std::pair<int, int>> bonds;  ///< indices into `bodies`, first < second, sorted
     std::vector<int> degree;      ///< bonds per body
+    std::vector<int> contacts;    ///< bodies in face contact (contact_range) per body, >= degree
     std::vector<int> cluster;     ///< cluster index per body (clusters ordered by first member)
     std::vector<int> cluster_size;  ///< members per cluster
 
-    /// Clusters of `size` members in which every member has `degree` bonds (a closed shell:
-    /// 60 members of degree 5).
+    /// Clusters of `size` members in which every member is in contact with `degree` others (a
+    /// closed shell: 60 members, 5 contacts each).
     int complete_clusters(int size, int degree) const;
-    /// The sizes, ascending, of the clusters of two or more members in which every member has
-    /// `degree` bonds: closed shells of any size (the 60-member shell, and smaller cages the
-    /// same particles can close into).
+    /// The sizes, ascending, of the clusters of two or more members in which every member is in
+    /// contact with `degree` others: closed shells of any size (the 60-member shell, and smaller
+    /// cages the same particles can close into).
     std::vector<int> closed_cluster_sizes(int degree) const;
     int largest_cluster() const;
     /// Fraction of the bodies in clusters whose size lies in each group: group g holds sizes

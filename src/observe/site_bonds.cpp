@@ -30,7 +30,7 @@ int BondCensus::complete_clusters(int size, int full_degree) const {
     std::vector<char> complete(cluster_size.size());
     for (std::size_t c = 0; c < cluster_size.size(); ++c) complete[c] = cluster_size[c] == size;
     for (std::size_t b = 0; b < bodies.size(); ++b)
-        if (degree[b] != full_degree) complete[std::size_t(cluster[b])] = 0;
+        if (contacts[b] != full_degree) complete[std::size_t(cluster[b])] = 0;
     return int(std::count(complete.begin(), complete.end(), 1));
 }
 
@@ -38,7 +38,7 @@ std::vector<int> BondCensus::closed_cluster_sizes(int full_degree) const {
     std::vector<char> closed(cluster_size.size());
     for (std::size_t c = 0; c < cluster_size.size(); ++c) closed[c] = cluster_size[c] >= 2;
     for (std::size_t b = 0; b < bodies.size(); ++b)
-        if (degree[b] != full_degree) closed[std::size_t(cluster[b])] = 0;
+        if (contacts[b] != full_degree) closed[std::size_t(cluster[b])] = 0;
     std::vector<int> sizes;
     for (std::size_t c = 0; c < cluster_size.size(); ++c)
         if (closed[c]) sizes.push_back(cluster_size[c]);
@@ -120,6 +120,9 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
     for (const std::vector<int>& face : rule.faces)
         for (const int t : face)
             if (t < 0 || t >= n_types) throw InputError("site bonds: face site type " + std::to_string(t) + " unknown");
+    if (!(rule.bond_range > 0) || !(rule.contact_range >= rule.bond_range))
+        throw InputError("site bonds: contact_range " + std::to_string(rule.contact_range) +
+                         " must be at least bond_range " + std::to_string(rule.bond_range) + " > 0");
     BondCensus census;
     for (const SiteRecord& s : sites) census.bodies.push_back(s.body);
     std::sort(census.bodies.begin(), census.bodies.end());
@@ -146,7 +149,7 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
         per_type = std::max(per_type, ++count[std::size_t(sites[s].type)]);
     }
 
-    // Sites binned by type and cell, in cells at least bond_range wide and, along each axis, no
+    // Sites binned by type and cell, in cells at least contact_range wide and, along each axis, no
     // more than twice the cube root of the sites per type: a type has about one site per body,
     // so a search meets about one site of the type it wants in its 27 cells, and the table of
     // cells stays within 8 entries per site whatever the box.
@@ -154,7 +157,7 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
     const Vec3 length = box.hi - box.lo;
     int n_cells[3];
     for (int d = 0; d < 3; ++d)
-        n_cells[d] = std::max(1, std::min(side_cap, int(std::floor(length[d] / rule.bond_range))));
+        n_cells[d] = std::max(1, std::min(side_cap, int(std::floor(length[d] / rule.contact_range))));
     const std::int64_t cells_per_type = std::int64_t(n_cells[0]) * n_cells[1] * n_cells[2];
     auto cell_of = [&](const Vec3& x, int d) {
         const int c = int(std::floor((x[d] - box.lo[d]) / length[d] * n_cells[d]));
@@ -183,15 +186,16 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
             }
         return d;
     };
-    const double range_sq = rule.bond_range * rule.bond_range;
-    auto close = [&](int a, int b) {
+    const double bond_sq = rule.bond_range * rule.bond_range, contact_sq = rule.contact_range * rule.contact_range;
+    auto distance_sq = [&](int a, int b) {
         const Vec3 d = separation(sites[std::size_t(a)].x - sites[std::size_t(b)].x);
-        return dot(d, d) < range_sq;
+        return dot(d, d);
     };
 
     // For each body's face: the partners of its first site nearby, and of those the bodies whose
-    // partner sites are near every site of the face.
-    std::set<std::pair<int, int>> bonds;
+    // partner sites are near every site of the face (within bond_range: a bond; within
+    // contact_range: a contact).
+    std::set<std::pair<int, int>> bonds, touching;
     for (std::size_t i = 0; i < n_bodies; ++i)
         for (const std::vector<int>& face : rule.faces) {
             if (face.empty()) continue;
@@ -219,18 +223,22 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
                 for (std::uint32_t b = first[std::size_t(near[n])]; b < first[std::size_t(near[n]) + 1]; ++b) {
                     const int o = int(binned[b]);
                     const std::size_t j = std::size_t(body_of[std::size_t(o)]);
-                    if (j == i || !close(lead, o)) continue;
-                    bool bonded = true;
-                    for (std::size_t k = 1; k < face.size() && bonded; ++k) {
+                    if (j == i) continue;
+                    double widest = distance_sq(lead, o);  // the face's farthest site pair
+                    for (std::size_t k = 1; k < face.size() && widest < contact_sq; ++k) {
                         const int mine = site_of[i * std::size_t(n_types) + std::size_t(face[k])];
                         const int p = rule.partner[std::size_t(face[k])];
                         const int theirs = p < 0 || p >= n_types ? -1 : site_of[j * std::size_t(n_types) + std::size_t(p)];
-                        bonded = mine >= 0 && theirs >= 0 && close(mine, theirs);
+                        widest = mine >= 0 && theirs >= 0 ? std::max(widest, distance_sq(mine, theirs)) : contact_sq;
                     }
-                    if (bonded) bonds.insert({int(std::min(i, j)), int(std::max(i, j))});
+                    const std::pair<int, int> pair{int(std::min(i, j)), int(std::max(i, j))};
+                    if (widest < contact_sq) touching.insert(pair);
+                    if (widest < bond_sq) bonds.insert(pair);
                 }
         }
     census.bonds.assign(bonds.begin(), bonds.end());
+    census.contacts.assign(n_bodies, 0);
+    for (const auto& [i, j] : touching) ++census.contacts[std::size_t(i)], ++census.contacts[std::size_t(j)];
     census.degree.assign(n_bodies, 0);
     std::vector<int> parent(n_bodies);
     std::iota(parent.begin(), parent.end(), 0);
