@@ -19,7 +19,8 @@ class Simulation;
 /// within r_b = 0.5). Site type k is species first_site + k.
 ///
 /// Two faces are in contact when every site pair lies within `contact_range` (>= bond_range).
-/// Bonds define the clusters; contacts decide whether a cluster is closed: in a closed shell
+/// Bonds define the clusters; contacts among a cluster's members decide whether it is closed
+/// (a face touching a body outside the cluster closes nothing): in a closed shell
 /// at temperature a bond or two is always stretched a little past r_b for a moment, and a
 /// count of bonds alone then misses the shell, while a missing member leaves its neighbours'
 /// faces with no partner site nearer than the closest faces that do not meet in the shell
@@ -44,7 +45,7 @@ struct BondCensus {
     std::vector<std::int64_t> bodies;  ///< body ids, ascending
     std::vector<std::pair<int, int>> bonds;  ///< indices into `bodies`, first < second, sorted
     std::vector<int> degree;      ///< bonds per body
-    std::vector<int> contacts;    ///< bodies in face contact (contact_range) per body, >= degree
+    std::vector<int> contacts;    ///< members of its own cluster in face contact (contact_range), >= degree
     std::vector<int> cluster;     ///< cluster index per body (clusters ordered by first member)
     std::vector<int> cluster_size;  ///< members per cluster
 

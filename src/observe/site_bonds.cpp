@@ -237,8 +237,6 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
                 }
         }
     census.bonds.assign(bonds.begin(), bonds.end());
-    census.contacts.assign(n_bodies, 0);
-    for (const auto& [i, j] : touching) ++census.contacts[std::size_t(i)], ++census.contacts[std::size_t(j)];
     census.degree.assign(n_bodies, 0);
     std::vector<int> parent(n_bodies);
     std::iota(parent.begin(), parent.end(), 0);
@@ -258,6 +256,12 @@ BondCensus find_site_bonds(const std::vector<SiteRecord>& sites, const SiteBondR
         census.cluster[b] = number[std::size_t(r)];
         ++census.cluster_size[std::size_t(number[std::size_t(r)])];
     }
+    // Contacts within the cluster only: a face touching a body the cluster does not hold (a
+    // member that just left, a monomer sitting in a gap) closes nothing.
+    census.contacts.assign(n_bodies, 0);
+    for (const auto& [i, j] : touching)
+        if (census.cluster[std::size_t(i)] == census.cluster[std::size_t(j)])
+            ++census.contacts[std::size_t(i)], ++census.contacts[std::size_t(j)];
     return census;
 }
 

@@ -311,7 +311,9 @@ TEST(Capsomer, BondCensusAgreesWithBruteForceOnShakenShells) {
             }
     int more = 0;  // bodies with a contact that is no bond: the shaking reaches past r_b
     for (int i = 0; i < n; ++i) {
-        EXPECT_EQ(census.contacts[std::size_t(i)], int(touching[std::size_t(i)].size())) << "body " << i;
+        int mates = 0;  // contacts count within the body's own cluster
+        for (const int j : touching[std::size_t(i)]) mates += census.cluster[std::size_t(j)] == census.cluster[std::size_t(i)];
+        EXPECT_EQ(census.contacts[std::size_t(i)], mates) << "body " << i;
         more += census.contacts[std::size_t(i)] > census.degree[std::size_t(i)];
     }
     EXPECT_GT(more, 0);
@@ -348,12 +350,19 @@ TEST(Capsomer, ClosedShellWithAStretchedBond) {
     SiteBondRule strict = bond_rule(c);
     strict.contact_range = strict.bond_range;
     EXPECT_EQ(find_site_bonds(sites_at(c, poses), strict, big_box()).complete_clusters(60, 5), 0);
-    // Pulled 0.6 apart each (1.2 between the partner sites): no longer in contact.
-    poses[0].shift += 0.3 * u;
-    poses[std::size_t(k)].shift -= 0.3 * u;
-    const BondCensus open = find_site_bonds(sites_at(c, poses), bond_rule(c), big_box());
-    EXPECT_EQ(open.contacts[0], 4);
-    EXPECT_EQ(open.complete_clusters(60, 5), 0);
+    // A member moved 0.7 straight out: its bonds break (site pairs 0.7 apart) but its faces
+    // still touch the hole's rim within 1.0. It is a monomer now, and contacts count within a
+    // cluster, so neither it nor the 59-cluster around the hole is closed.
+    {
+        std::vector<Pose> lifted = shell({Quat{1, 0, 0, 0}, {20, 20, 20}});
+        const Vec3 out = centre(59);
+        lifted[59].shift += (0.7 / norm(out)) * out;
+        const BondCensus apart = find_site_bonds(sites_at(c, lifted), bond_rule(c), big_box());
+        EXPECT_EQ(apart.largest_cluster(), 59);
+        EXPECT_EQ(apart.degree[59], 0);
+        EXPECT_EQ(apart.contacts[59], 0);
+        EXPECT_TRUE(apart.closed_cluster_sizes(5).empty());
+    }
 }
 
 // A missing member leaves its neighbours' faces with no partner site nearby. The nearest faces
