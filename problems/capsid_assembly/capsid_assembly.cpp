@@ -564,7 +564,8 @@ ProblemInfo capsid_assembly_info() {
         // the design check refuses a contact_range that reaches them.
         .real("contact_range", 1.0, 0.01, 2, "sigma",
               "faces whose four site pairs are closer are in contact: a cluster is closed "
-              "(complete_shells, closed_by_size) when every member touches 5 others (analysis only)")
+              "(complete_shells, closed_by_size) when every member touches 5 members of its cluster "
+              "(analysis only)")
         .real("temperature", 1.0, 0, 1e4, "epsilon/k_B", "the solvent thermostat's temperature")
         .real("thermostat_tau", 0.5, 0, 1e9, "tau", "relaxation time of the solvent's Bussi thermostat", true)
         .choice("solvent", "explicit", {"explicit", "implicit"},
