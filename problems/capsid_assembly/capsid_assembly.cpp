@@ -73,11 +73,12 @@ Capsomer design(const Config& c) {
                 far = std::max(far, norm(d.sites[std::size_t(a)] -
                                          rotate(group[g], d.sites[std::size_t(d.partner[std::size_t(a)])])));
             if (far > 1e-6 && far < std::max(bond_range, contact_range)) {
+                const bool bond = far < bond_range;
                 std::ostringstream m;
                 m << c.scene() << ": site_depth_outer=" << depths.outer << ", site_depth_inner="
-                  << depths.inner << " and " << (far < bond_range ? "bond_range=" : "contact_range=")
-                  << (far < bond_range ? bond_range : contact_range) << " would count faces " << far
-                  << " apart in the closed shell as " << (far < bond_range ? "a bond" : "a contact");
+                  << depths.inner << " and " << (bond ? "bond_range=" : "contact_range=")
+                  << (bond ? bond_range : contact_range) << " would count faces " << far
+                  << " apart in the closed shell as " << (bond ? "a bond" : "a contact");
                 throw InputError(m.str());
             }
         }
