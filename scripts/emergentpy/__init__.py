@@ -202,6 +202,16 @@ class Run:
                     b["cluster_size"][k][:][border], edges.diagonal() if edges.ndim == 2 else edges,
                     b["bonds"][k][:][border].astype(int))
 
+    def body_orientations(self):
+        """The bodies' orientations (unit quaternions w, x, y, z) of the frames body_frames()
+        returns, bodies ordered by id: array [frame, body, 4]."""
+        out = []
+        for g, keys in self._census_body_frames():
+            fr = g["frames"]
+            for k in keys:
+                out.append(fr["orientation"][k][:][np.argsort(fr["id"][k][:])])
+        return np.array(out)
+
     def body_frame_times(self):
         """The times of body_frames() (H5MD's, right across a change of dt)."""
         return np.array([float(g["cluster/time"][int(k)]) for g, keys in self._census_body_frames() for k in keys])
@@ -239,3 +249,20 @@ def wilson_interval(successes, trials, z=1.96):
     centre = (p + z * z / (2 * trials)) / (1 + z * z / trials)
     half = z * np.sqrt(p * (1 - p) / trials + z * z / (4 * trials * trials)) / (1 + z * z / trials)
     return p, max(0.0, centre - half), min(1.0, centre + half)
+
+
+def fit_sphere(x):
+    """The sphere through points x [n, 3] in the least-squares sense, (centre, radius), minimising
+    sum (|x_i - c|^2 - R^2)^2: |x|^2 = 2 c.x + (R^2 - |c|^2) is linear in c and R^2 - |c|^2."""
+    a = np.hstack([2 * x, np.ones((len(x), 1))])
+    s, *_ = np.linalg.lstsq(a, (x * x).sum(1), rcond=None)
+    c = s[:3]
+    return c, float(np.sqrt(max(s[3] + c @ c, 0.0)))
+
+
+def rotation(q):
+    """Rotation matrices (body frame to lab) of unit quaternions (w, x, y, z), one per row."""
+    w, x, y, z = np.asarray(q, float).T
+    return np.stack([np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)], -1),
+                     np.stack([2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)], -1),
+                     np.stack([2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)], -1)], -2)

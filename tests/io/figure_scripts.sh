@@ -143,6 +143,60 @@ for bad in "$dir/none $dir/cs" "$dir/cs $dir/cm" "$dir/cs $dir/cs x" "$dir/cs $d
   rc=0; err=$("$scripts/capsid_shell_register" $bad 2>&1 >/dev/null) || rc=$?
   [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_shell_register $bad: status $rc, $err"; exit 1; }
 done
+# Openings: the open 59-cluster has one empty place, predicted by its 5 neighbours, exactly where
+# the closed shell's member sits that the `open_shell` start leaves out (both starts place the
+# same shell; step 0, so no motion yet); the closed shell has none. Then that frame with the
+# freed capsomer moved 2 out over the opening: a monomer over it, not capped; and with the same
+# capsomer labelled a member of a cluster of 6: capped by it.
+"$exe" run capsid-assembly --preset tiny --set start=open_shell --set attraction=0.09 --set site_depth_outer=0.5 \
+  --set steps=100 --set sample_every=100 --set output.every=100 --set progress_interval=0 -o "$dir/co" >/dev/null
+"$scripts/capsid_holes" "$dir/cs" "$dir/cs" 51 0 >"$dir/cs/holes.txt"
+grep -q "^# openings: 0 open, 0 capped by a cluster of 6+$" "$dir/cs/holes.txt" \
+  || { echo "FAIL: the closed shell's openings: $(cat "$dir/cs/holes.txt")"; exit 1; }
+"$scripts/capsid_holes" "$dir/co" "$dir/cs" 51 0 >"$dir/co/holes.txt"
+/usr/bin/python3 - "$dir" "$scripts" <<'PY'
+import shutil, subprocess, sys
+sys.path.insert(0, sys.argv[2])
+import h5py
+import numpy as np
+from emergentpy import Run
+d, scripts = sys.argv[1], sys.argv[2]
+def rows(text):
+    return [[c.strip() for c in l.split("|")[1:-1]] for l in text.splitlines() if l.startswith("| ") and "t (tau)" not in l]
+(row,) = rows(open(f"{d}/co/holes.txt").read())
+assert row[2:6] == ["59", "1 of 1", "1", "5"] and row[7:] == ["0", "0", "-", "no"], row
+shell = Run(f"{d}/cs").body_frames()[4][0]
+_, _, size, _, x, lengths = Run(f"{d}/co").body_frames()
+lengths = np.diag(lengths) if np.ndim(lengths) == 2 else lengths
+def gap(a, b):
+    r = a - b
+    return np.linalg.norm(r - lengths * np.round(r / lengths), axis=-1)
+missing = shell[np.argmax([gap(p, x[0][size[0] == 59]).min() for p in shell])]
+at = np.array(row[6].split(), float)
+assert gap(at, missing) < 0.05, (at, missing)
+# The freed capsomer moved 2 out over the opening (outward from the shell's centre).
+shutil.copytree(f"{d}/co", f"{d}/cc")
+path = Run(f"{d}/cc").trajectory_paths[0]
+with h5py.File(path, "r+") as f:
+    fr = f["particles/bodies/frames"]
+    free = int(np.flatnonzero(fr["cluster_size/000000"][:] == 1)[0])
+    rel = shell - shell[0]
+    out = at - (shell[0] + (rel - lengths * np.round(rel / lengths)).mean(0))
+    fr["position/000000"][free] = at + 2.0 * out / np.linalg.norm(out)
+def holes():
+    return rows(subprocess.run([f"{scripts}/capsid_holes", f"{d}/cc", f"{d}/cs", "51", "0"], check=True,
+                               capture_output=True, text=True).stdout)
+(row,) = holes()
+assert row[7:] == ["1", "0", "-", "no"], row
+with h5py.File(path, "r+") as f:
+    f["particles/bodies/frames/cluster_size/000000"][free] = 6
+(row,) = holes()
+assert row[7:] == ["0", "0", "6", "yes"], row
+PY
+for bad in "$dir/none $dir/cs" "$dir/cs $dir/co" "$dir/cs $dir/cs x" "$dir/cs $dir/cs 60" "$dir/cs $dir/cs 51 99"; do
+  rc=0; err=$("$scripts/capsid_holes" $bad 2>&1 >/dev/null) || rc=$?  # one line, status 1
+  [ $rc = 1 ] && [ "$(wc -l <<<"$err")" = 1 ] || { echo "FAIL: capsid_holes $bad: status $rc, $err"; exit 1; }
+done
 # A seeded dimer with no attraction: its census ends once, and the two capsomers drift apart
 # (no force holds them; relative diffusion takes them 3 beyond contact in a few tau, inside the
 # 20 tau window) before any bond forms again.
