@@ -17,12 +17,13 @@
 #   throughput  WCA at rho 0.8, 1 million atoms by `emergent run lj-fluid backend=cuda`, and
 #               where the bundle has it (REFERENCE=1 benchmarks/gpu_bundle.sh) by the separate
 #               pair system the engine replaced (3.7e9 atom-steps/s on an H100: the figure the
-#               engine must keep); taylor-couette paper, rayleigh-benard medium and
-#               rotating-drum short, set-up plus a few hundred steps on cuda, with the device
-#               memory per particle
+#               engine must keep); taylor-couette paper, rayleigh-benard medium,
+#               rotating-drum short and capsid-assembly table1 (explicit solvent, 244625
+#               particles: the rate its projected days rest on), set-up plus a few hundred steps
+#               on cuda, with the device memory per particle
 #   scaling     weak scaling of lj-fluid on the host back end, 1 to 16 ranks (the machine's 16
 #               cores), in the time left of the 5 minutes (the other parts' limits add up to
-#               295 s; most finish well inside them)
+#               320 s; most finish well inside them)
 # A failed device test or run is repeated with CUDA_LAUNCH_BLOCKING=1, so the error names the
 # loop's functor.
 #   profile     (only when asked for: --only profile) the throughput cases with
@@ -243,6 +244,8 @@ layer=(rayleigh-benard --preset medium --set steps=200 --set sample_every=200 --
        --set output.every=0)
 drum=(rotating-drum --preset short --set steps=300 --set sample_every=300 --set output.every=0
       --set checkpoint_every=0)
+capsid=(capsid-assembly --preset table1 --set steps=500 --set sample_every=500 --set output.every=0
+        --set checkpoint_every=0)
 # emergent run on cuda, its rate, memory and time split from the summary (and on stderr the
 # device profile where EMERGENT_PROFILE is set).
 engine_case() {  # JSON SCENE_ARGS...
@@ -268,6 +271,7 @@ if [ -z "$only" ] || [ "$only" = throughput ]; then
   part "throughput taylor-couette paper (set-up + 300 steps)" 25 engine_case /tmp/tc.json "${taylor[@]}"
   part "throughput rayleigh-benard medium (set-up + 200 steps)" 30 engine_case /tmp/rb.json "${layer[@]}"
   part "throughput rotating-drum short (set-up + 300 steps)" 25 engine_case /tmp/drum.json "${drum[@]}"
+  part "throughput capsid-assembly table1, explicit solvent (set-up + 500 steps)" 25 engine_case /tmp/capsid.json "${capsid[@]}"
 fi
 
 # The engine against the separate path it replaced, WCA at 1M atoms: 5 rounds, alternating
@@ -305,6 +309,7 @@ if [ "$only" = profile ]; then
   part "profile WCA 1M" 40 engine_case /tmp/profile.wca.json "${wca[@]}" --set equilibration_steps=0
   part "profile rotating-drum short" 40 engine_case /tmp/profile.drum.json "${drum[@]}"
   part "profile rayleigh-benard medium" 40 engine_case /tmp/profile.rb.json "${layer[@]}"
+  part "profile capsid-assembly table1" 40 engine_case /tmp/profile.capsid.json "${capsid[@]}"
   unset EMERGENT_PROFILE
 fi
 
