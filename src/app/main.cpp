@@ -81,6 +81,21 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
         return vm.count(key) ? vm[key].as<std::vector<std::string>>() : std::vector<std::string>{};
     };
     std::vector<std::string> sets = list("set");
+    // An option given with an empty value is a mistake, not the option left out.
+    const std::pair<const char*, const char*> named[] = {
+        {"preset", "--preset"}, {"output", "-o"}, {"summary-json", "--summary-json"}, {"restart", "--restart"}};
+    for (const auto& [key, flag] : named)
+        if (!vm[key].defaulted() && vm[key].as<std::string>().empty())
+            throw InputError(std::string(flag) + ": the value is empty");
+    namespace fs = std::filesystem;
+    if (!vm["summary-json"].as<std::string>().empty() &&
+        fs::is_directory(vm["summary-json"].as<std::string>()))
+        throw InputError("--summary-json: '" + vm["summary-json"].as<std::string>() +
+                         "' is a directory, not a file name");
+    if (!vm["restart"].as<std::string>().empty() && fs::exists(vm["restart"].as<std::string>()) &&
+        !fs::is_regular_file(vm["restart"].as<std::string>()))
+        throw InputError("--restart: '" + vm["restart"].as<std::string>() +
+                         "' is not a file (give the checkpoint.h5 itself)");
     io::CheckpointHeader checkpoint;
     app::RunRequest req;
     req.restart_file = vm["restart"].as<std::string>();

@@ -238,6 +238,11 @@ std::vector<Assignment> read_ini(const std::string& path) {
         line = trim(strip_comment(line));
         if (line.empty()) continue;
         const std::string where = path + ":" + std::to_string(number);
+        // A control byte (a NUL would cut the message short) means this is no INI text.
+        for (const char c : line)
+            if ((static_cast<unsigned char>(c) < 0x20 && c != '\t') || c == 0x7f)
+                throw InputError(where + ": not a line of text (control bytes): is '" + path +
+                                 "' an INI file?");
         if (line.front() == '[') {
             if (line.back() != ']' || line.size() < 3)
                 throw InputError(where + ": malformed section header '" + line + "'");
