@@ -69,6 +69,12 @@ public:
         if (c.real("arm_small") > c.real("arm_big"))
             throw InputError(c.scene() + ": arm_small=" + std::to_string(c.real("arm_small")) +
                              " must not exceed arm_big=" + std::to_string(c.real("arm_big")));
+        // The wall's own check says the same in its terms; here in the scene's.
+        if (!(c.real("wall_spacing") >= 0.25 * c.real("wall_sphere_diameter")))
+            throw InputError(c.scene() + ": wall_spacing=" + c.text("wall_spacing") +
+                             " must be at least 0.25 wall_sphere_diameter (" +
+                             std::to_string(0.25 * c.real("wall_sphere_diameter")) +
+                             "): closer wall spheres overlap into a wall that touches a sphere many times over");
     }
 
     void build(Simulation& sim) override {

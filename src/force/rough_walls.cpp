@@ -64,11 +64,23 @@ private:
     double range_, d_wall_;
 };
 
+/// Wall spheres closer than a quarter of their diameter make no roughness a particle could
+/// feel, only a wall that touches it dozens of times over (as stiff as that many contacts), and
+/// the spheres within reach of one particle grow as (diameter / spacing)^2: at 1e-5 a step
+/// takes hours.
+constexpr double kMinSpacingPerDiameter = 0.25;
+
 void check_sizes(const std::string& what, double spacing, double sphere_diameter, double range) {
-    if (spacing > 0 && sphere_diameter > 0 && range > 0) return;
     std::ostringstream msg;
-    msg << what << ": spacing=" << spacing << ", sphere_diameter=" << sphere_diameter
-        << " and range factor " << range << " must be > 0";
+    if (!(spacing > 0 && sphere_diameter > 0 && range > 0))
+        msg << what << ": spacing=" << spacing << ", sphere_diameter=" << sphere_diameter
+            << " and range factor " << range << " must be > 0";
+    else if (!(spacing >= kMinSpacingPerDiameter * sphere_diameter))
+        msg << what << ": spacing=" << spacing << " must be at least " << kMinSpacingPerDiameter
+            << " sphere_diameter (" << kMinSpacingPerDiameter * sphere_diameter
+            << "): closer spheres overlap into a wall that touches a particle many times over";
+    else
+        return;
     throw InputError(msg.str());
 }
 

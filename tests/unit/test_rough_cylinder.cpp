@@ -6,9 +6,12 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 
 #include "force/rough_cylinder.hpp"
 #include "force/rough_end_cap.hpp"
+#include "emergent/error.hpp"
+#include "emergent/force_term.hpp"
 
 using namespace emergent;
 
@@ -155,4 +158,29 @@ TEST(RoughEndCap, SpheresTurnRigidlyAndEveryTouchingOneIsFound) {
         ASSERT_LT(std::sqrt(dot(diff, diff)), 1e-9 * (1 + std::sqrt(dot(ref, ref)))) << "trial " << trial;
     }
     EXPECT_GT(touching, 500);
+}
+
+// Wall spheres closer than a quarter of their diameter are refused in one message naming the
+// spacing: at 1e-5 each particle would reach ~1e10 of them (a hang), at 1e-300 the sphere count
+// overflows. A quarter is accepted.
+TEST(RoughWalls, RefuseSpheresCloserThanAQuarterOfTheirDiameter) {
+    RoughCylinder w = drum();
+    RoughEndCap c;
+    c.z = 12, c.radius = 8.4, c.omega = -0.2, c.sphere_diameter = 1;
+    for (const double spacing : {0.2, 1e-5, 1e-300}) {
+        w.spacing = c.spacing = spacing;
+        for (int wall = 0; wall < 2; ++wall) {
+            try {
+                if (wall == 0) make_rough_cylinder_wall(w, kWall, kRange);
+                else make_rough_end_cap(c, kWall, kRange);
+                ADD_FAILURE() << "spacing " << spacing << " accepted";
+            } catch (const InputError& e) {
+                EXPECT_NE(std::string(e.what()).find("must be at least 0.25 sphere_diameter"), std::string::npos)
+                    << e.what();
+            }
+        }
+    }
+    w.spacing = c.spacing = 0.25;
+    EXPECT_NO_THROW(make_rough_cylinder_wall(w, kWall, kRange));
+    EXPECT_NO_THROW(make_rough_end_cap(c, kWall, kRange));
 }
