@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Loading out-of-tree scenes.
 #include <dlfcn.h>
+#include <elf.h>
 
+#include <cstdint>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
 #include "emergent/error.hpp"
@@ -10,7 +14,45 @@
 
 namespace emergent {
 
-void load_plugin(const std::string& path) {
+namespace {
+
+/// Why the file at `path` cannot be a whole 64-bit ELF shared library, or "" where it may be one.
+/// The loader maps segments past the end of a truncated file and dies of SIGBUS when it touches
+/// them, so a file shorter than its own headers and segments say is refused before dlopen.
+std::string damaged_library(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return "";  // dlopen says why
+    Elf64_Ehdr header{};
+    in.read(reinterpret_cast<char*>(&header), sizeof header);
+    if (!in || std::memcmp(header.e_ident, ELFMAG, SELFMAG) != 0 || header.e_ident[EI_CLASS] != ELFCLASS64)
+        return "";  // not a 64-bit ELF file: dlopen's own message names that
+    const auto size = static_cast<std::uint64_t>(std::filesystem::file_size(path));
+    if (header.e_phoff + std::uint64_t(header.e_phnum) * header.e_phentsize > size ||
+        header.e_shoff + std::uint64_t(header.e_shnum) * header.e_shentsize > size)
+        return "its headers reach past its end";
+    for (int k = 0; k < header.e_phnum; ++k) {
+        Elf64_Phdr segment{};
+        in.seekg(static_cast<std::streamoff>(header.e_phoff + std::uint64_t(k) * header.e_phentsize));
+        in.read(reinterpret_cast<char*>(&segment), sizeof segment);
+        if (!in) return "its program headers cannot be read";
+        if (segment.p_type == PT_LOAD && segment.p_offset + segment.p_filesz > size)
+            return "a segment reaches past its end";
+    }
+    return "";
+}
+
+}  // namespace
+
+void load_plugin(const std::string& given) {
+    if (given.empty()) throw InputError("--plugin: the path is empty");
+    // A bare name would be looked up in the library path only: one that names a file here
+    // means that file.
+    const std::string path =
+        given.find('/') == std::string::npos && std::filesystem::exists(given) ? "./" + given : given;
+    const std::string damage = damaged_library(path);
+    if (!damage.empty())
+        throw InputError("cannot load plugin '" + given + "': a truncated or damaged shared library (" +
+                         damage + ")");
     // RTLD_NOW: unresolved symbols fail here, with dlerror's explanation, not mid-run.
     void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
     if (!handle) throw InputError("cannot load plugin '" + path + "': " + dlerror());
