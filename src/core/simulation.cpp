@@ -868,11 +868,22 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
 Simulation::~Simulation() = default;
 
 void Simulation::set_box(const Box& box, const bool split_axis[3]) {
+    // Beyond 1e9 sigma from the origin a double position resolves ~1e-7 and worse: a step's
+    // displacement is rounded away (at 1e100 x + v dt == x), and the cell grid alone would
+    // not fit in memory. A box that large is a parameter gone wrong (a density of 1e-300).
+    constexpr double kFarthest = 1e9;
     for (int d = 0; d < 3; ++d)
         if (!(box.hi[d] > box.lo[d])) {
             std::ostringstream msg;
             msg << "box: axis " << "xyz"[d] << " has length " << box.hi[d] - box.lo[d]
                 << ", must be > 0";
+            throw InputError(msg.str());
+        } else if (!(std::abs(box.lo[d]) <= kFarthest && std::abs(box.hi[d]) <= kFarthest)) {
+            std::ostringstream msg;
+            msg << "box: axis " << "xyz"[d] << " spans " << box.lo[d] << " to " << box.hi[d]
+                << ", beyond " << kFarthest << " sigma from the origin, where positions lose a "
+                << "step's displacement to round-off: check the parameters that size the box "
+                << "(density, particle fraction, dimensions)";
             throw InputError(msg.str());
         }
     bool split[3] = {true, true, true};

@@ -14,7 +14,17 @@ void CellList::setup(const Vec3& lo, const Vec3& hi, double shell, double range,
     g.lo = lo;
     g.hi = hi;
     centre_ = 0.5 * (lo + hi);
-    const double min_cell = range / std::max(1, subdivisions);
+    double min_cell = range / std::max(1, subdivisions);
+    // A domain far larger than its particles need (a dilute gas in a huge box) would ask for
+    // more cells than memory holds, and more than an int counts: wider cells then, as few as
+    // kMostCells. Cells wider than asked stay correct (the search reaches fewer of them).
+    constexpr double kMostCells = 1 << 24;
+    for (int pass = 0; pass < 4; ++pass) {
+        double cells = 1;
+        for (int d = 0; d < 3; ++d) cells *= std::max(1.0, std::floor((hi[d] - lo[d]) / min_cell));
+        if (cells <= kMostCells) break;
+        min_cell *= 1.01 * std::cbrt(cells / kMostCells);
+    }
     for (int d = 0; d < 3; ++d) {
         const double len = hi[d] - lo[d];
         const int inner = std::max(1, static_cast<int>(std::floor(len / min_cell)));

@@ -196,6 +196,31 @@ TEST(CellList, PointsOnDomainFacesFallOnTheirSide) {
     EXPECT_FALSE(cells.is_inner(cells.cell_of({0.678, 40.0, 0.674})));
 }
 
+// A dilute gas in a huge domain (lj-fluid at density 1e-20: sides of 7e7) asked for 1e23 cells,
+// past what an int counts, and the set-up crashed. The grid now holds at most 2^24 inner cells,
+// wider than asked, and a pair within range is still found.
+TEST(CellList, AHugeDomainGetsWiderCellsNotMoreThanMemoryHolds) {
+    const double side = 7e7, range = 1.42;
+    CellList cells;
+    cells.setup({0, 0, 0}, {side, side, side}, range, range, 2);
+    const CellIndex& g = cells.index();
+    double inner = 1;
+    for (int d = 0; d < 3; ++d) {
+        inner *= g.end_inner[d] - g.first_inner[d];
+        EXPECT_GE(1.0 / g.inverse_width[d], range / 2) << "axis " << d;
+    }
+    EXPECT_LE(inner, double(1 << 24));
+    EXPECT_GT(inner, double(1 << 24) / 8);  // coarsened no more than needed
+    // Two particles 1.0 apart, far out in the domain: one cell or neighbouring cells apart.
+    ParticleStore store;
+    store.add_owned({3.3e7, 1.1e7, 5.5e7}, {0, 0, 0}, 0, 0);
+    store.add_owned({3.3e7 + 1.0, 1.1e7, 5.5e7}, {0, 0, 0}, 0, 1);
+    cells.bin(store.position.data(), store.size());
+    NeighbourList list(1.0, 0.42);
+    list.build(store, cells);
+    EXPECT_GE(list.n_pairs(), 1u);  // the only pair there is
+}
+
 TEST(CellList, BinningAfterASortEqualsBinningAnew) {
     // bin_after_sort takes the owned particles' cells from the sort that ordered them (and
     // partitioned them) and looks up only the ghosts; every cell must hold exactly what a
