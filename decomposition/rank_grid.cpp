@@ -117,9 +117,15 @@ void RankGrid::require_width(double ghost_width) const {
         for (int k = 0; k < dims_[d]; ++k) width = std::min(width, cuts_[d][k + 1] - cuts_[d][k]);
         if (width < ghost_width) {
             std::ostringstream msg;
-            msg << "domain too thin: axis " << "xyz"[d] << " is split into " << dims_[d]
-                << " domains, the thinnest of width " << width << ", less than the ghost shell "
-                << ghost_width << " (cutoff + skin); use fewer ranks or a larger system";
+            // Unsplit, the box itself is too thin: fewer ranks would not help.
+            if (dims_[d] == 1)
+                msg << "box too thin: axis " << "xyz"[d] << " is " << width
+                    << " wide, less than the ghost shell " << ghost_width
+                    << " (cutoff + skin); enlarge the system (the scene's size parameters)";
+            else
+                msg << "domain too thin: axis " << "xyz"[d] << " is split into " << dims_[d]
+                    << " domains, the thinnest of width " << width << ", less than the ghost shell "
+                    << ghost_width << " (cutoff + skin); use fewer ranks or a larger system";
             throw InputError(msg.str());
         }
     }

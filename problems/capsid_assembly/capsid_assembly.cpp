@@ -567,7 +567,7 @@ ProblemInfo capsid_assembly_info() {
               "faces whose four site pairs are closer are in contact: a cluster is closed "
               "(complete_shells, closed_by_size) when every member touches 5 members of its cluster "
               "(analysis only)")
-        .real("temperature", 1.0, 0, 1e4, "epsilon/k_B", "the solvent thermostat's temperature")
+        .real("temperature", 1.0, 0, 1e4, "epsilon/k_B", "the solvent thermostat's temperature", true)
         .real("thermostat_tau", 0.5, 0, 1e9, "tau", "relaxation time of the solvent's Bussi thermostat", true)
         .choice("solvent", "explicit", {"explicit", "implicit"},
                 "explicit: WCA atoms with a Bussi thermostat; implicit: none, the capsomers "
