@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "emergent/body_shapes.hpp"
+#include "emergent/error.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
@@ -14,7 +15,17 @@ namespace {
 
 class GranularBed final : public Problem {
 public:
-    explicit GranularBed(const Config& c) : c_(c) {}
+    explicit GranularBed(const Config& c) : c_(c) {
+        // Each lattice site holds one grain: it must fit there without touching its neighbours
+        // (a tetrahedron turned any way reaches arm + diameter/2 from its centre), or the start
+        // overlaps and the contacts fling the grains apart.
+        const bool bodies = c.text("particles") == "tetrahedra";
+        const double reach = c.real("diameter") + (bodies ? 2 * c.real("arm") : 0.0);
+        if (c.real("spacing") < reach)
+            throw InputError(c.scene() + ": spacing=" + c.text("spacing") + " must be at least " +
+                             (bodies ? "2 arm + diameter (" : "diameter (") + std::to_string(reach) +
+                             "): the grains on the start lattice would overlap");
+    }
 
     void build(Simulation& sim) override {
         const double a = c_.real("spacing");
