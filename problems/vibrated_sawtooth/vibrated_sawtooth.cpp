@@ -415,6 +415,14 @@ private:
             throw InputError(s + "d_big=" + c_.text("d_big") + " is smaller than d_small=" + c_.text("d_small"));
         if (!(spread_ < d_small_))
             throw InputError(s + "size_spread=" + c_.text("size_spread") + " must be below d_small");
+        // The rod base's own checks, in this scene's names.
+        if (!(period_ >= 2 * c_.real("rod_spacing")))
+            throw InputError(s + "tooth_period=" + c_.text("tooth_period") + " must be at least 2 rod_spacing (" +
+                             std::to_string(2 * c_.real("rod_spacing")) + "): each flank of a tooth needs its rods");
+        if (!(c_.real("rod_spacing") >= 0.25 * c_.real("rod_diameter")))
+            throw InputError(s + "rod_spacing=" + c_.text("rod_spacing") + " must be at least 0.25 rod_diameter (" +
+                             std::to_string(0.25 * c_.real("rod_diameter")) +
+                             "): closer rods merge into a surface touching a grain many times over");
         if (period_ > u_max_)
             throw InputError(s + "tooth_period=" + c_.text("tooth_period") + " does not fit the container (" +
                              (rings_ ? "radius " : "length ") + std::to_string(u_max_) + ")");

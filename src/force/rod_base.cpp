@@ -92,6 +92,15 @@ force::RodLattice force::rod_lattice(const RodBase& b) {
     else if (!(b.rod_spacing > 0) || !(b.rod_diameter > 0))
         msg << what << ": rod_spacing=" << b.rod_spacing << " and rod_diameter=" << b.rod_diameter
             << " must be > 0";
+    // A period shorter than two rod spacings leaves a flank without a rod of its own (at 1e-300
+    // the grains fell through), and rods closer than a quarter of their diameter merge into a
+    // surface that touches a grain many times over, at a cost that grows as their number.
+    else if (!(b.period >= 2 * b.rod_spacing))
+        msg << what << ": period=" << b.period << " must be at least 2 rod_spacing (" << 2 * b.rod_spacing
+            << "): each flank of a tooth needs its rods";
+    else if (!(b.rod_spacing >= 0.25 * b.rod_diameter))
+        msg << what << ": rod_spacing=" << b.rod_spacing << " must be at least 0.25 rod_diameter ("
+            << 0.25 * b.rod_diameter << "): closer rods merge into a surface touching a grain many times over";
     else if (!(b.amplitude >= 0) || !(b.frequency >= 0) || !std::isfinite(b.amplitude * b.frequency))
         msg << what << ": amplitude=" << b.amplitude << " and frequency=" << b.frequency
             << " must be >= 0";
