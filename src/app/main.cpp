@@ -156,10 +156,12 @@ int dispatch(int argc, char** argv, MPI_Comm comm, int rank) {
     const std::string command = words.front();
     std::vector<std::string> args(words.begin() + 1, words.end());
     if (command == "list") {
+        if (!args.empty()) throw InputError("list takes no arguments, got '" + args[0] + "'");
         if (rank == 0) list_scenes(std::cout);
         return 0;
     }
     if (command == "help" || command == "--help" || command == "-h") {
+        if (args.size() > 1) throw InputError("help takes one scene, got also '" + args[1] + "'");
         if (args.empty()) {
             if (rank == 0) std::cout << kUsage;
         } else if (rank == 0) {

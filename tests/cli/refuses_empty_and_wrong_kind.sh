@@ -24,6 +24,8 @@ check "--restart: '.*' is not a file \(give the checkpoint.h5 itself\)$" "$exe" 
 check "binary.ini:1: not a line of text \(control bytes\)" "$exe" "${run[@]}" --config "$dir/binary.ini"
 check "^emergent: error: --plugin: the path is empty$" "$exe" --plugin "" list
 check "cannot load plugin '.*truncated.so': a truncated or damaged shared library" "$exe" --plugin "$dir/truncated.so" list
+check "^emergent: error: list takes no arguments, got 'extra'$" "$exe" list extra
+check "^emergent: error: help takes one scene, got also 'extra'$" "$exe" help lj-fluid extra
 # Nothing was written by any of them.
 [ -z "$(ls "$dir" | grep -v '^binary.ini$' | grep -v '^truncated.so$')" ] || { echo "FAIL: files written: $(ls "$dir")"; fail=1; }
 exit $fail
