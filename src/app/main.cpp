@@ -87,20 +87,16 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
     for (const auto& [key, flag] : named)
         if (!vm[key].defaulted() && vm[key].as<std::string>().empty())
             throw InputError(std::string(flag) + ": the value is empty");
-    namespace fs = std::filesystem;
-    if (!vm["summary-json"].as<std::string>().empty() &&
-        fs::is_directory(vm["summary-json"].as<std::string>()))
-        throw InputError("--summary-json: '" + vm["summary-json"].as<std::string>() +
-                         "' is a directory, not a file name");
-    if (!vm["restart"].as<std::string>().empty() && fs::exists(vm["restart"].as<std::string>()) &&
-        !fs::is_regular_file(vm["restart"].as<std::string>()))
-        throw InputError("--restart: '" + vm["restart"].as<std::string>() +
-                         "' is not a file (give the checkpoint.h5 itself)");
     io::CheckpointHeader checkpoint;
     app::RunRequest req;
     req.restart_file = vm["restart"].as<std::string>();
     req.output_dir = vm["output"].as<std::string>();
     req.summary_json = vm["summary-json"].as<std::string>();
+    namespace fs = std::filesystem;
+    if (!req.summary_json.empty() && fs::is_directory(req.summary_json))
+        throw InputError("--summary-json: '" + req.summary_json + "' is a directory, not a file name");
+    if (!req.restart_file.empty() && fs::exists(req.restart_file) && !fs::is_regular_file(req.restart_file))
+        throw InputError("--restart: '" + req.restart_file + "' is not a file (give the checkpoint.h5 itself)");
     std::string scene = vm.count("scene") ? vm["scene"].as<std::string>() : "";
     if (!req.restart_file.empty()) {
         checkpoint = io::read_checkpoint_header(req.restart_file, comm);
