@@ -22,9 +22,12 @@ fi
 rate() {
   local sets=() kv
   for kv in $([ "$2" = a ] && echo "${A_SETS:-}" || echo "${B_SETS:-}"); do sets+=(--set "$kv"); done
+  # Each timed run into an empty folder of its own, not over the last one with --overwrite,
+  # which an older build does not know.
+  rm -rf "$work/timed"
   mpirun --oversubscribe -np "$ranks" "$1" run --restart "$work/settle/checkpoint.h5" \
     --set steps=$((settle + timed_steps)) --set checkpoint_every=0 --set progress_interval=0 \
-    "${sets[@]}" --summary-json "$work/s.json" >/dev/null
+    "${sets[@]}" -o "$work/timed" --summary-json "$work/s.json" >/dev/null
   summary_value "$work/s.json" bytes_per_particle >>"$work/m$2"
   summary_value "$work/s.json" atom_steps_per_second
 }

@@ -186,10 +186,14 @@ window)
   read -r from t0 dt < <(/usr/bin/python3 -c "import h5py,sys; h=h5py.File(sys.argv[1],'r')['checkpoint']; print(int(h.attrs['step']), round(float(h.attrs['time']), 3), float(h['config'].attrs['dt']))" "$run/checkpoint.h5")
   win="$run/window$from"
   if [ ! -f "$win/summary.json" ]; then
-    mkdir -p "$win"
-    cp "$run/checkpoint.h5" "$win/start.h5"
-    "$exe" run --restart "$win/start.h5" --set steps=$((from + steps)) --set events_every="$events" \
-      --set checkpoint_every=0 --set progress_interval=0 -o "$win" >/dev/null
+    if [ -f "$win/checkpoint.h5" ]; then  # a window stopped on the way (Ctrl-C, a signal) goes on
+      "$exe" run --restart "$win/checkpoint.h5" -o "$win" >/dev/null
+    else
+      mkdir -p "$win"
+      cp "$run/checkpoint.h5" "$win/start.h5"
+      "$exe" run --restart "$win/start.h5" --set steps=$((from + steps)) --set events_every="$events" \
+        --set checkpoint_every=0 --set progress_interval=0 -o "$win" >/dev/null
+    fi
   fi
   echo "# window from step $from ($t0 tau), $steps steps of $dt, censuses every $events; $(run_stamp)"
   /usr/bin/python3 - "$win" "$events" "$dt" "$steps" <<PY

@@ -9,7 +9,8 @@
 #        (defaults 594 = 4752/8, 2, benchmarks/logs/capsid_calibration); E_VALUES and SEEDS
 #        (space-separated) override "0.08 0.09 0.10 0.11" and "1 2 3"; SET="key=value ..." adds
 #        scene settings (e.g. SET="site_depth_outer=0.25", another site row). Runs already
-#        complete in OUT are kept; the table goes to stdout (save it as the log).
+#        complete in OUT are kept, stopped ones continued from their checkpoints; the table goes
+#        to stdout (save it as the log).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 capsomers=${1:-594}
@@ -28,9 +29,9 @@ commit_line
 one() {
   local e=$1 seed=$2 dir="$out/e${1}_seed$2"
   [ -f "$dir/summary.json" ] && return 0
-  "$exe" run capsid-assembly "${extra[@]}" --set capsomers="$capsomers" --set attraction="$e" --set seed="$seed" \
-    --set start=monomers --set steps=50000 --set sample_every=1000 --set progress_interval=0 \
-    -o "$dir" >/dev/null
+  start_or_resume "$dir" capsid-assembly "${extra[@]}" --set capsomers="$capsomers" --set attraction="$e" \
+    --set seed="$seed" --set start=monomers --set steps=50000 --set sample_every=1000 --set progress_interval=0
+  "$exe" run "${run_args[@]}" -o "$dir" >/dev/null
 }
 running=0
 for e in $e_values; do
@@ -44,7 +45,20 @@ wait
 /usr/bin/python3 - "$out" "$capsomers" $e_values <<'PY'
 import json, os, sys
 import h5py, numpy as np
+sys.path.insert(0, "scripts")
+from emergentpy import Run
 out, n, es = sys.argv[1], int(sys.argv[2]), sys.argv[3:]
+def dimers(run):
+    """(step, value) of the dimer census over a run and its continuations; a step that two
+    segments hold (a run killed after its last checkpoint, continued from it) counted once."""
+    steps, values = [], []
+    for path in Run(run).trajectory_paths:
+        with h5py.File(path, "r") as f:
+            if "dimers" in f["observables"]:
+                steps.append(f["observables/dimers/step"][:])
+                values.append(f["observables/dimers/value"][:].ravel())
+    step, first = np.unique(np.concatenate(steps), return_index=True)
+    return step, np.concatenate(values)[first]
 scale = 4752 / n
 print(f"# dimers scaled to 4752 capsomers (x {scale:g}); paper: 8 (+- 2.8, Poisson) at step 50000, e = 0.09")
 print("# e      seed  dimers@5e4  mean(25k..50k)  largest  wall_s")
@@ -52,9 +66,7 @@ for e in es:
     snap, late = [], []
     for d in sorted(x for x in os.listdir(out) if x.startswith(f"e{e}_seed")):
         s = json.load(open(f"{out}/{d}/summary.json"))
-        with h5py.File(f"{out}/{d}/trajectory.h5", "r") as f:
-            g = f["observables/dimers"]
-            step, value = g["step"][:], g["value"][:].ravel()
+        step, value = dimers(f"{out}/{d}")
         at = value[step == 50000][0] * scale
         mean = value[step >= 25000].mean() * scale
         snap.append(at); late.append(mean)

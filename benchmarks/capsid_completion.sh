@@ -10,7 +10,8 @@
 #        default, and /tmp/capsid_completion, big files); SEEDS overrides "11 12 13 14 15 16",
 #        STEPS the run length (1e5), SAMPLE the sample interval (500), SETS further settings
 #        (e.g. "solvent=implicit capsomers=120": more monomers around the gap). Runs already
-#        complete in OUT are kept (use one OUT per SETS); the table goes to stdout.
+#        complete in OUT are kept (use one OUT per SETS), stopped ones continued from their
+#        checkpoints; the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 e=${1:-0.09}
@@ -27,22 +28,22 @@ commit_line
 for seed in $seeds; do
   dir="$out/e${e}_seed$seed"
   [ -f "$dir/summary.json" ] && continue
-  "$exe" run capsid-assembly --preset small --set start=open_shell --set attraction="$e" \
+  start_or_resume "$dir" capsid-assembly --preset small --set start=open_shell --set attraction="$e" \
     --set seed="$seed" --set steps="$steps" --set sample_every="$sample" \
-    --set progress_interval=0 "${sets[@]}" -o "$dir" >/dev/null
+    --set progress_interval=0 "${sets[@]}"
+  "$exe" run "${run_args[@]}" -o "$dir" >/dev/null
 done
 /usr/bin/python3 - "$out" "$e" $seeds <<'PY'
 import json, sys
-import h5py
+sys.path.insert(0, "scripts")
+from emergentpy import Run  # a continued run's segments read as one
 out, e, seeds = sys.argv[1], sys.argv[2], sys.argv[3:]
 print("# seed  completed_at_tau  largest_at_end  shells_at_end  wall_s")
 done, censored = [], []
 for seed in seeds:
     d = f"{out}/e{e}_seed{seed}"
     s = json.load(open(f"{d}/summary.json"))
-    with h5py.File(f"{d}/trajectory.h5", "r") as f:
-        t = f["observables/complete_shells/time"][:]
-        shells = f["observables/complete_shells/value"][:]
+    t, shells = Run(d).observable("complete_shells")
     first = next((float(ti) for ti, n in zip(t, shells) if n >= 1), None)
     m = s["scene_measures"]
     (done if first is not None else censored).append(first if first is not None else float(t[-1]))

@@ -7,7 +7,8 @@
 # usage: benchmarks/capsid_hysteresis.sh [ATTRACTION] [OUT]   (defaults: the preset's, and
 #        benchmarks/logs/capsid_hysteresis); SEEDS (space-separated) overrides "5 6 7 8", STEPS the
 #        preset's steps, SET="key=value ..." adds scene settings (e.g. SET="site_depth_outer=0.5",
-#        the note's rows). Runs already complete in OUT are kept; the table goes to stdout.
+#        the note's rows). Runs already complete in OUT are kept, stopped ones continued from
+#        their checkpoints; the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 e=${1:-}
@@ -25,8 +26,9 @@ for seed in $seeds; do
   for start in shell open_shell; do
     dir="$out/${start}_seed$seed"
     [ -f "$dir/summary.json" ] && continue
-    "$exe" run capsid-assembly --preset small --set start=$start --set seed="$seed" "${extra[@]}" \
-      --set progress_interval=0 -o "$dir" >/dev/null
+    start_or_resume "$dir" capsid-assembly --preset small --set start=$start --set seed="$seed" "${extra[@]}" \
+      --set progress_interval=0
+    "$exe" run "${run_args[@]}" -o "$dir" >/dev/null
   done
 done
 /usr/bin/python3 - "$out" $seeds <<'PY'

@@ -12,7 +12,8 @@
 #   the implicit solvent, benchmarks/RESULTS.md "A longer step in the implicit solvent"),
 #   FRAMES (250 steps = 5 tau), CAPSOMERS (300), PARTICLE_FRACTION (0.033) override; SET="key=value
 #   ..." adds scene settings after the rows' (e.g. SET="site_depth_outer=0.25"). Runs already
-#   complete in OUT are kept; the table goes to stdout.
+#   complete in OUT are kept, stopped ones continued from their checkpoints; the table goes to
+#   stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 [ $# -ge 1 ] || { echo "usage: $0 OUT [SEEDS...]" >&2; exit 2; }
@@ -30,12 +31,13 @@ commit_line
 for seed in $seeds; do
   run="$out/seed$seed"
   if [ ! -f "$run/summary.json" ]; then
-    "$exe" run capsid-assembly --set site_depth_outer=0 --set capsomers="${CAPSOMERS:-300}" \
+    start_or_resume "$run" capsid-assembly --set site_depth_outer=0 --set capsomers="${CAPSOMERS:-300}" \
       --set particle_fraction="${PARTICLE_FRACTION:-0.033}" --set solvent=implicit --set start=cluster \
       --set cluster_size="$patch" --set attraction="$e" --set seed="$seed" --set dt="$dt" --set skin=1.4 \
       --set steps="$steps" --set sample_every="$(steps_for 50 "$dt")" --set events_every=12 \
       --set output.every="$frames" --set output.elements= --set checkpoint_every="$steps" \
-      --set progress_interval=0 "${extra[@]}" -o "$run" >/dev/null
+      --set progress_interval=0 "${extra[@]}"
+    "$exe" run "${run_args[@]}" -o "$run" >/dev/null
   fi
   echo "## seed $seed"
   scripts/capsid_nucleus_origin "$run"

@@ -8,7 +8,8 @@
 # many mid-size clusters and no shells at high e.
 # usage: benchmarks/capsid_table1.sh [OUT] [E...]   (defaults /tmp/capsid_table1; e 0.06 0.09
 #        0.12 0.15); SEEDS ("21 22"), STEPS (400000), CAPSOMERS (300), SOLVENT (implicit)
-#        override. Runs already complete in OUT are kept; the table goes to stdout.
+#        override. Runs already complete in OUT are kept, stopped ones continued from their
+#        checkpoints; the table goes to stdout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-/tmp/capsid_table1}
@@ -26,9 +27,10 @@ for e in $energies; do
   for seed in $seeds; do
     dir="$out/e${e}_seed$seed"
     [ -f "$dir/summary.json" ] && continue
-    "$exe" run capsid-assembly --set capsomers="$capsomers" --set particle_fraction=0.033 \
+    start_or_resume "$dir" capsid-assembly --set capsomers="$capsomers" --set particle_fraction=0.033 \
       --set solvent="$solvent" --set start=monomers --set attraction="$e" --set seed="$seed" \
-      --set steps="$steps" --set sample_every=$((steps / 50)) --set progress_interval=0 -o "$dir" >/dev/null
+      --set steps="$steps" --set sample_every=$((steps / 50)) --set progress_interval=0
+    "$exe" run "${run_args[@]}" -o "$dir" >/dev/null
   done
 done
 /usr/bin/python3 - "$out" "$energies" "$seeds" <<'PY'
@@ -45,16 +47,17 @@ for e in energies:
               + f" | {m['complete_shells']:.0f} | {m['bonds']:.0f} | {s['wall_seconds']:.0f} |")
 # How soon: the first sample with mass in clusters of 6 or more (the lag), and the first at which
 # that mass reaches half its value at the end (samples every 1/50 of the run).
-import h5py
 import numpy as np
+sys.path.insert(0, "scripts")
+from emergentpy import Run  # a continued run's segments read as one
 print()
 print("| e | seed | first mass in 6+ (tau) | half of the final mass in 6+ (tau) |")
 print("|---|---|---|---|")
 for e in energies:
     for seed in seeds:
-        with h5py.File(f"{out}/e{e}_seed{seed}/trajectory.h5", "r") as h:
-            t = h["observables/mass_fractions/time"][:]
-            big = np.asarray(h["observables/mass_fractions/value"][:], float).reshape(len(t), -1)[:, 2:].sum(axis=1)
+        t, fractions = Run(f"{out}/e{e}_seed{seed}").observable("mass_fractions")
+        t = np.asarray(t, float).reshape(-1)
+        big = np.asarray(fractions, float).reshape(len(t), -1)[:, 2:].sum(axis=1)
         first = f"{t[np.argmax(big > 0)]:.0f}" if (big > 0).any() else "-"
         half = f"{t[np.argmax(big >= 0.5 * big[-1])]:.0f}" if big[-1] > 0 else "-"
         print(f"| {e} | {seed} | {first} | {half} |")

@@ -11,7 +11,9 @@
 #    the total energy's drift per particle over SHELL_TAU.
 # usage: benchmarks/capsid_timestep.sh OUT DT...   E (0.1225), SEEDS ("41 42 43"), TAU (1000),
 #        SHELL_TAU (200), CAPSOMERS (300, at particle_fraction 0.033), SET ("site_depth_outer=0")
-#        override. Runs already complete in OUT are kept; the table goes to stdout.
+#        override. Runs already complete in OUT are kept; one that was stopped (OUT/*.tmp) runs
+#        again from its start over what it left, as its wall time is measured; the table goes to
+#        stdout.
 #        benchmarks/capsid_timestep.sh rate CHECKPOINT TAU ROUNDS DT:SKIN...  the cost of TAU
 #        time units continued from CHECKPOINT (a capsid run's state, e.g. with clusters) at each
 #        step and list skin, the settings in turn in every round (their order rotated from round
@@ -89,7 +91,7 @@ for dt in "$@"; do
     "$exe" run capsid-assembly "${extra[@]}" --set capsomers="$capsomers" --set particle_fraction=0.033 \
       --set solvent=implicit --set start=monomers --set attraction="$e" --set seed="$seed" --set dt="$dt" \
       --set steps="$(steps_for "$tau" "$dt")" --set sample_every="$census" --set output.every=0 \
-      --set progress_interval=0 -o "$dir.tmp" >/dev/null
+      --set progress_interval=0 -o "$dir.tmp" --overwrite >/dev/null
     mv "$dir.tmp" "$dir"
   done
   dir="$out/dt${dt}_shell"
@@ -98,7 +100,7 @@ for dt in "$@"; do
       --set solvent=implicit --set start=shell --set attraction="$e" --set friction_translation=0 \
       --set friction_rotation=0 --set dt="$dt" --set steps="$(steps_for "$shell_tau" "$dt")" \
       --set sample_every="$(steps_for 1 "$dt")" --set output.every=0 --set progress_interval=0 \
-      -o "$dir.tmp" >/dev/null
+      -o "$dir.tmp" --overwrite >/dev/null
     mv "$dir.tmp" "$dir"
   fi
 done

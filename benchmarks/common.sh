@@ -6,9 +6,31 @@ trap 'rm -rf "$work"' EXIT
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 
+# start_or_resume DIR SCENE_ARGS...: sets run_args, what `emergent run` is given before -o DIR in
+# a sweep that keeps the runs already complete in DIR (summary.json: the caller skips those).
+# Into a DIR without a run: SCENE_ARGS. Where a run there stopped before its end and left
+# DIR/checkpoint.h5 (Ctrl-C and SIGTERM write one, as does checkpoint_every): --restart from it,
+# the same run continued with its own settings (its summary's wall_seconds then count the
+# continuation alone). A run there with no checkpoint stops the script with one line, its files
+# untouched: the engine would refuse to write over them, and they are the user's to keep or
+# remove.
+start_or_resume() {
+  local dir=$1
+  shift
+  if [ -f "$dir/checkpoint.h5" ]; then
+    run_args=(--restart "$dir/checkpoint.h5")
+  elif compgen -G "$dir/trajectory*.h5" >/dev/null; then
+    echo "$(basename "$0"): $dir holds an unfinished run without a checkpoint to continue from:" \
+      "move it away (or remove it) to run it again" >&2
+    exit 2
+  else
+    run_args=("$@")
+  fi
+}
+
 # scene_sweep OUT_DIR RANKS STEPS KEY VALUE... -- SCENE_ARGS...: one run of SCENE_ARGS per
-# value of KEY, into OUT_DIR/KEY_VALUE; runs already complete there are kept, so a sweep that
-# was stopped continues where it was.
+# value of KEY, into OUT_DIR/KEY_VALUE; runs already complete there are kept and stopped ones
+# continued (start_or_resume), so a sweep that was stopped continues where it was.
 scene_sweep() {
   local out=$1 ranks=$2 steps=$3 key=$4 values=() v
   shift 4
@@ -17,13 +39,15 @@ scene_sweep() {
   mkdir -p "$out"
   for v in "${values[@]}"; do
     [ -f "$out/${key}_$v/summary.json" ] && continue
-    mpirun -q --oversubscribe -np "$ranks" "$exe" run "$@" --set "$key=$v" --set steps="$steps" \
-      --set progress_interval=0 -o "$out/${key}_$v" >/dev/null
+    start_or_resume "$out/${key}_$v" "$@" --set "$key=$v" --set steps="$steps" --set progress_interval=0
+    mpirun -q --oversubscribe -np "$ranks" "$exe" run "${run_args[@]}" -o "$out/${key}_$v" >/dev/null
   done
 }
 
 # settle_checkpoint EXE RANKS STEPS SCENE_ARGS...: runs the scene STEPS steps once into
-# $work/settle and leaves $work/settle/checkpoint.h5, the state timed runs continue from.
+# $work/settle and leaves $work/settle/checkpoint.h5, the state timed runs continue from. Each
+# timed run writes elsewhere (-o "$work/timed" --overwrite): beside the checkpoint, a second
+# continuation from its step would find the first one's trajectory.from<STEP>.h5 and be refused.
 settle_checkpoint() {
   local exe_=$1 ranks_=$2 steps_=$3
   shift 3

@@ -24,7 +24,7 @@ for dt in $dts; do
   outcome=ok
   for r in $(seq "$repeats"); do
     if ! "$exe" run rotating-drum "${drum[@]}" --set dt="$dt" --set steps="$steps" \
-        --set sample_every="$every" -o "$work/d$dt" >"$work/log" 2>&1; then
+        --set sample_every="$every" -o "$work/d$dt" --overwrite >"$work/log" 2>&1; then
       outcome="stopped: $(grep -o 'error: .*' "$work/log" | head -1 | cut -c8-90)"
       break
     fi

@@ -145,14 +145,15 @@ scene_checks() {
   dir=$(mktemp -d)
   # From step 0 (no equilibration), so the first row compares forces and energies of the same
   # state: only the order of additions differs there.
-  # A failed device run is run again with blocking launches, so its error names the loop.
+  # A failed device run is run again with blocking launches, so its error names the loop; the
+  # second run replaces the failed one's files (its -o DIR is among the arguments).
   run1() {
     timeout 40 emergent run "$@" --preset tiny --set equilibration_steps=0 --set progress_interval=0 \
       >/dev/null 2>"$dir/err" && return 0
     tail -n 3 "$dir/err"
     if grep -q "backend=$dev" <<<"$*"; then
       CUDA_LAUNCH_BLOCKING=1 timeout 40 emergent run "$@" --preset tiny --set equilibration_steps=0 \
-        --set progress_interval=0 -o "$dir/blocking" >/dev/null 2>"$dir/err"
+        --set progress_interval=0 --overwrite >/dev/null 2>"$dir/err"
       echo "  again with CUDA_LAUNCH_BLOCKING=1: exit $?: $(tail -n 2 "$dir/err")"
     fi
     return 1
@@ -228,7 +229,7 @@ if [ -z "$only" ] || [ "$only" = sanitizer ]; then
     done
     part "sanitizer memcheck, scenes" 20 bash -c 'for s in lj-fluid rayleigh-benard taylor-couette; do
       "$0" --tool memcheck --error-exitcode 99 emergent run $s --preset tiny --set backend=cuda \
-        --set neighbour_list=full --set steps=100 --set progress_interval=0 -o /tmp/san.$s >/dev/null || exit; done' "$sanitizer"
+        --set neighbour_list=full --set steps=100 --set progress_interval=0 -o /tmp/san.$s --overwrite >/dev/null || exit; done' "$sanitizer"
   fi
 fi
 
@@ -247,12 +248,13 @@ drum=(rotating-drum --preset short --set steps=300 --set sample_every=300 --set 
 capsid=(capsid-assembly --preset table1 --set steps=500 --set sample_every=500 --set output.every=0
         --set checkpoint_every=0)
 # emergent run on cuda, its rate, memory and time split from the summary (and on stderr the
-# device profile where EMERGENT_PROFILE is set).
+# device profile where EMERGENT_PROFILE is set). Its output folder in /tmp is scratch, replaced
+# by the next run of the same case (the ratio's rounds; this script again on a warm machine).
 engine_case() {  # JSON SCENE_ARGS...
   local json=$1
   shift
   emergent run "$@" --set progress_interval=0 --set backend=cuda --set neighbour_list=full \
-    --summary-json "$json" -o "/tmp/throughput.$(basename "$json" .json)" >/dev/null || return
+    --summary-json "$json" -o "/tmp/throughput.$(basename "$json" .json)" --overwrite >/dev/null || return
   grep -E '"(N|steps|wall_seconds|atom_steps_per_second|device_bytes_per_particle|bytes_per_particle|neighbour_rebuilds|seconds_(force|neighbour|integrate|communicate))"' "$json" | tr -d ' \n'
   echo
 }

@@ -17,7 +17,7 @@ for np in $ranks_list; do
   for r in $(seq "$repeats"); do
     mpirun --oversubscribe -np "$np" "$exe" run --restart "$work/settle/checkpoint.h5" \
       --set equilibration_steps=10200 --set steps=5000 --set checkpoint_every=0 \
-      --set progress_interval=0 --summary-json "$work/s.json" >/dev/null
+      --set progress_interval=0 -o "$work/timed" --overwrite --summary-json "$work/s.json" >/dev/null
     grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/r$np"
     grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$np"
   done

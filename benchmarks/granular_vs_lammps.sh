@@ -31,7 +31,7 @@ skin=0.2
 run_emergent() {  # NP -> "rate bytes"
   mpirun --oversubscribe -np "$1" sh -c "/usr/bin/time -f %M -o $work/rss.\$OMPI_COMM_WORLD_RANK \
     $exe run --restart $work/settle/checkpoint.h5 --set equilibration_steps=15200 --set steps=5000 \
-    --set checkpoint_every=0 --set progress_interval=0 --summary-json $work/s.json" >/dev/null
+    --set checkpoint_every=0 --set progress_interval=0 -o $work/timed --overwrite --summary-json $work/s.json" >/dev/null
   echo "$(summary_value "$work/s.json" atom_steps_per_second) $(rss_sum "$work/rss")"
 }
 run_lammps() {  # NP -> "rate bytes"

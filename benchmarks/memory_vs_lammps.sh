@@ -23,7 +23,7 @@ rss_of() {  # NP PROGRAM NC -> summed peak RSS in bytes
     emergent) cmd="$exe run lj-fluid --preset bench --set n_cells=$nc --set equilibration_steps=100 \
                    --set steps=100 --set skin=0.3 --set progress_interval=0" ;;
     emergent-o) cmd="$exe run lj-fluid --preset bench --set n_cells=$nc --set equilibration_steps=100 \
-                   --set steps=100 --set skin=0.3 --set progress_interval=0 -o $work/out" ;;
+                   --set steps=100 --set skin=0.3 --set progress_interval=0 -o $work/out --overwrite" ;;
     lammps) cmd="lmp -in $PWD/benchmarks/in.wca_bench.lmp -log none -screen none -var nc $nc \
                  -var nwarm 100 -var nsteps 100 -var skin 0.3" ;;
   esac

@@ -43,6 +43,12 @@ status=0
 verdicts=()
 for scene in "${scenes[@]}"; do
   dir=$out/$scene${seed:+_seed$seed}
+  # An earlier run there (and its logs) stays: the engine would refuse it anyway.
+  if compgen -G "$dir/trajectory*.h5" >/dev/null || [ -e "$dir/summary.json" ]; then
+    verdicts+=("ERROR: $scene: $dir holds an earlier run; choose another --out")
+    status=2
+    continue
+  fi
   mkdir -p "$dir" || exit 2
   # The capsid check judges a closed shell (the small preset starts from the open cluster).
   scene_sets=()

@@ -19,7 +19,7 @@ for r in $(seq "$repeats"); do
   for np in $ranks_list; do
     mpirun --oversubscribe -np "$np" "$exe" run --restart "$work/turn/checkpoint.h5" \
       --set steps=9450 --set checkpoint_every=0 --set progress_interval=0 \
-      --summary-json "$work/s.json" >/dev/null
+      -o "$work/timed" --overwrite --summary-json "$work/s.json" >/dev/null
     grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/r$np"
     grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$np"
   done

@@ -13,7 +13,8 @@
 # goes unstable is reported as stopped. REPEATS timed runs per case (median wall time).
 # Writes the table to stdout and OUT_DIR/work_precision.png (difference against cost).
 # usage: benchmarks/scene_work_precision.sh SCENE [OUT_DIR] [REPEATS] [TAU]
-#        (defaults /tmp/emergent_swp_SCENE, 3, 1000)
+#        (defaults /tmp/emergent_swp_SCENE, 3, 1000; OUT_DIR is emptied first: it must be empty
+#        or this script's earlier output)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=$1
@@ -28,6 +29,10 @@ case $scene in
     base_args=(--set r_inner=10 --set gap=5 --set length=40 --set omega=0.2 --set ends=periodic) ;;
   *) echo "scene must be rayleigh-benard or taylor-couette" >&2; exit 2 ;;
 esac
+if [ -n "$(ls -A "$out" 2>/dev/null)" ] && [ ! -d "$out/base" ]; then
+  echo "scene_work_precision.sh: $out holds other files than this script's earlier output, and would be emptied: choose another OUT_DIR" >&2
+  exit 2
+fi
 rm -rf "$out" && mkdir -p "$out"
 "$exe" run "$scene" "${base_args[@]}" --set fields.interval=0 --set equilibration_steps=40000 \
   --set steps=0 --set progress_interval=0 --checkpoint-every 40000 -o "$out/base" >/dev/null

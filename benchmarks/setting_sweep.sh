@@ -16,7 +16,7 @@ for r in $(seq "$repeats"); do
   for v in $values; do
     mpirun --oversubscribe -np "$ranks" "$exe" run --restart "$work/settle/checkpoint.h5" \
       --set steps=$((settle + timed_steps)) --set checkpoint_every=0 --set progress_interval=0 \
-      --set "$key=$v" --summary-json "$work/s.json" >/dev/null
+      --set "$key=$v" -o "$work/timed" --overwrite --summary-json "$work/s.json" >/dev/null
     summary_value "$work/s.json" atom_steps_per_second >>"$work/r$v"
     summary_value "$work/s.json" bytes_per_particle >>"$work/m$v"
     echo $(( $(summary_value "$work/s.json" neighbour_rebuilds) - rebuilds0 )) >>"$work/b$v"

@@ -14,7 +14,8 @@ cd "$(dirname "$0")/.."
 for kernel in specialised generic; do
   valgrind --tool=callgrind --callgrind-out-file="$work/cg.$kernel" "$exe" run \
     --restart "$work/bed/checkpoint.h5" --set steps=1000 --set gamma_n=0 --set gamma_s=0 \
-    --set kernel=$kernel --set checkpoint_every=0 --set progress_interval=0 2>"$work/vg.$kernel" >/dev/null
+    --set kernel=$kernel --set checkpoint_every=0 --set progress_interval=0 -o "$work/bed.$kernel" \
+    2>"$work/vg.$kernel" >/dev/null
   grep -o 'Collected : [0-9]*' "$work/vg.$kernel" | awk '{print $3}' >"$work/ir.$kernel"
 done
 s=$(cat "$work/ir.specialised"); g=$(cat "$work/ir.generic")

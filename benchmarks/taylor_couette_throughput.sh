@@ -17,7 +17,7 @@ for r in $(seq "$repeats"); do
   for np in $ranks_list; do
     mpirun -q --oversubscribe -np "$np" "$exe" run taylor-couette --preset small \
       --set equilibration_steps=200 --set steps=3000 --set progress_interval=0 \
-      -o "$work/run" --summary-json "$work/s.json" "$@" >/dev/null
+      -o "$work/run" --overwrite --summary-json "$work/s.json" "$@" >/dev/null
     grep -o '"atom_steps_per_second": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/r$np"
     grep -o '"bytes_per_particle": [0-9.e+]*' "$work/s.json" | awk '{print $2}' >>"$work/m$np"
     grep -o '"N": [0-9]*' "$work/s.json" | awk '{print $2}' >"$work/n"

@@ -9,12 +9,17 @@
 # trajectory error (RMS position difference from the reference after 0.5 tau).
 # Writes a Markdown table to stdout and a PNG diagram (scripts/work_precision_report).
 #
-# usage: benchmarks/work_precision.sh [OUT_DIR] [REPEATS]    (default /tmp/emergent_wp, 3)
+# usage: benchmarks/work_precision.sh [OUT_DIR] [REPEATS]    (default /tmp/emergent_wp, 3; OUT_DIR
+#        is emptied first: it must be empty or this script's earlier output)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-/tmp/emergent_wp}
 repeats=${2:-3}
 exe=$PWD/build/bin/emergent
+if [ -n "$(ls -A "$out" 2>/dev/null)" ] && [ ! -d "$out/wca/base" ]; then
+  echo "work_precision.sh: $out holds other files than this script's earlier output, and would be emptied: choose another OUT_DIR" >&2
+  exit 2
+fi
 rm -rf "$out" && mkdir -p "$out"
 tau=10
 case_args() {  # name -> scene settings

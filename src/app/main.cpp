@@ -4,6 +4,7 @@
 
 #include <boost/program_options.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -27,9 +28,11 @@ const char* kUsage =
     "usage: emergent list\n"
     "       emergent help <scene>\n"
     "       emergent run <scene> [--preset P] [--config file.ini]... [--set key=value]...\n"
-    "                            [-o DIR] [--summary-json FILE] [--checkpoint-every N]\n"
+    "                            [-o DIR [--overwrite]] [--summary-json FILE] [--checkpoint-every N]\n"
     "       emergent run --restart DIR/checkpoint.h5 [--set key=value]... [-o DIR]\n"
     "       emergent --plugin my_scene.so <command> ...   (out-of-tree scenes)\n"
+    "-o DIR that holds an earlier run is refused: --overwrite removes that run's files first;\n"
+    "--restart DIR/checkpoint.h5 continues it (new files beside the old, nothing replaced).\n"
     "A run with -o DIR stops at the next step on SIGUSR1, SIGTERM or Ctrl-C, writes\n"
     "DIR/checkpoint.h5 and says how to continue it.\n"
     "Exit status: 0 done; 2 bad input; 3 a run-time fault; 4 an I/O failure; 5 stopped on request.\n";
@@ -68,6 +71,7 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
         "config", po::value<std::vector<std::string>>()->composing(), "INI file")(
         "set", po::value<std::vector<std::string>>()->composing(), "key=value")(
         "output,o", po::value<std::string>()->default_value(""), "output directory")(
+        "overwrite", po::bool_switch(), "replace an earlier run in the output directory")(
         "summary-json", po::value<std::string>()->default_value(""), "summary file")(
         "restart", po::value<std::string>()->default_value(""), "checkpoint to continue")(
         "checkpoint-every", po::value<long long>(), "steps between checkpoints")(
@@ -91,6 +95,9 @@ int run_command(const std::vector<std::string>& args, MPI_Comm comm) {
     app::RunRequest req;
     req.restart_file = vm["restart"].as<std::string>();
     req.output_dir = vm["output"].as<std::string>();
+    req.overwrite = vm["overwrite"].as<bool>();
+    if (req.overwrite && req.output_dir.empty() && req.restart_file.empty())
+        throw InputError("--overwrite: no output directory given (-o DIR)");
     req.summary_json = vm["summary-json"].as<std::string>();
     namespace fs = std::filesystem;
     if (!req.summary_json.empty() && fs::is_directory(req.summary_json))
@@ -172,6 +179,10 @@ int dispatch(int argc, char** argv, MPI_Comm comm, int rank) {
 }  // namespace
 
 int main(int argc, char** argv) {
+    // Open MPI's ROMIO returns a failed write as an error with the system's reason (errno
+    // intact: "No space left on device"); its default OMPIO prints its own lines instead.
+    // A choice made in the environment (OMPI_MCA_io) stands.
+    setenv("OMPI_MCA_io", "romio321", 0);
     MPI_Init(&argc, &argv);
     io::silence_h5_error_stack();
     // Failures meet on a communicator of their own (app/failure_report.hpp).
@@ -216,6 +227,16 @@ int main(int argc, char** argv) {
         code = exit_code::run_fault;
     }
     if (code != exit_code::ok) code = app::report_failure(errors, code, line, rank_local);
+    // A file HDF5 failed to close (a full disk) would crash HDF5's shutdown inside
+    // MPI_Finalize: the failure is reported, whatever was closed is whole, so end here.
+    if (io::h5_file_close_failed()) {
+        if (code == exit_code::ok) {
+            std::fprintf(stderr, "emergent: I/O error: an output file could not be closed\n");
+            code = exit_code::io_failure;
+        }
+        std::fflush(nullptr);
+        std::_Exit(code);
+    }
     MPI_Finalize();
     return code;
 }

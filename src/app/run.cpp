@@ -16,6 +16,7 @@
 #include "emergent/simulation.hpp"
 #include "io/atomic_file.hpp"
 #include "io/checkpoint.hpp"
+#include "io/run_directory.hpp"
 #include "io/run_output.hpp"
 #include "app/memory_check.hpp"
 #include "app/run_guard.hpp"
@@ -113,15 +114,77 @@ RunSettings run_settings(const Config& cfg) {
 
 namespace {
 
-void prepare_output_dir(const std::string& dir, MPI_Comm comm) {
-    if (dir.empty()) return;
+namespace fs = std::filesystem;
+
+/// What is wrong with writing this run into its output directory (empty: nothing). Asked on
+/// one rank, before the run spends any time or touches a file. Sets `replace` when the
+/// directory holds an earlier run that --overwrite replaces.
+std::string output_dir_problem(const RunRequest& req, bool& replace) {
+    const std::string& dir = req.output_dir;
+    std::error_code ec;
+    const std::string from = req.restart ? fs::path(req.restart_file).parent_path().string() : "";
+    const bool continuing = req.restart && fs::equivalent(dir, from.empty() ? "." : from, ec);
+    if (continuing) {
+        if (req.overwrite)
+            return "--overwrite would remove the checkpoint this run continues from ('" +
+                   req.restart_file + "'): continue without it, or write elsewhere with -o DIR";
+        // A continuation writes trajectory.from<STEP>.h5; one from the same step that ran to
+        // its end is a whole file that a second continuation would replace.
+        const std::string segment =
+            dir + "/trajectory.from" + std::to_string(req.restart->step) + ".h5";
+        if (io::trajectory_complete(segment))
+            return "-o " + dir + ": '" + segment + "' is a finished continuation from step " +
+                   std::to_string(req.restart->step) + "; continuing again from that step " +
+                   "would replace it: move it away first, or continue with -o ANOTHER_DIR";
+        return "";
+    }
+    const std::vector<std::string> earlier = io::run_outputs_in(dir);
+    if (!earlier.empty()) {
+        if (req.overwrite) {
+            replace = true;
+            return "";
+        }
+        const bool resumable = fs::exists(dir + "/checkpoint.h5", ec);
+        return "-o " + dir + ": the directory holds an earlier run (" + io::list_names(earlier) +
+               "); give --overwrite to replace it" +
+               (resumable ? ", or continue it with --restart " + dir + "/checkpoint.h5" : "") +
+               ", or choose another directory";
+    }
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) return "cannot create output directory '" + dir + "'";
+    return "";
+}
+
+/// Checks the output directory on rank 0, and creates it; every rank learns the verdict.
+/// Returns whether the earlier run there is to be removed (once set-up has succeeded).
+bool claim_output_dir(const RunRequest& req, MPI_Comm comm) {
+    if (req.output_dir.empty()) return false;
     int rank = 0;
     MPI_Comm_rank(comm, &rank);
-    std::error_code ec;
-    if (rank == 0) std::filesystem::create_directories(dir, ec);
-    int failed = ec ? 1 : 0;
-    MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-    if (failed) throw InputError("cannot create output directory '" + dir + "'");
+    bool replace = false;
+    const std::string problem =
+        decomp::first_message(comm, rank == 0 ? output_dir_problem(req, replace) : "");
+    if (!problem.empty()) throw InputError(problem);
+    int flag = replace;
+    MPI_Bcast(&flag, 1, MPI_INT, 0, comm);
+    return flag != 0;
+}
+
+/// --overwrite: the earlier run's files go before this run writes its first one, so the
+/// directory never holds both.
+void remove_earlier_run(const std::string& dir, MPI_Comm comm) {
+    int rank = 0;
+    MPI_Comm_rank(comm, &rank);
+    std::string failure;
+    if (rank == 0) {
+        try {
+            io::remove_run_outputs(dir);
+        } catch (const IoError& e) {
+            failure = e.what();
+        }
+    }
+    failure = decomp::first_message(comm, failure);
+    if (!failure.empty()) throw IoError(failure);
 }
 
 /// The summary file must be writable before the run spends its time: a run that cannot report
@@ -213,7 +276,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
     const Config& cfg = req.config;
     if (cfg.integer("checkpoint_every") > 0 && req.output_dir.empty())
         throw InputError(cfg.scene() + ": checkpoint_every needs an output directory (-o DIR)");
-    prepare_output_dir(req.output_dir, comm);
+    const bool replace_earlier = claim_output_dir(req, comm);
     check_summary_path(req.summary_json, comm);
     // From here SIGUSR1 and SIGTERM ask for a checkpoint at the first step it can be written
     // (Ctrl-C from the end of the set-up on).
@@ -259,6 +322,7 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
         sim.initialise();
     }
     stop_request.catch_interrupt();
+    if (replace_earlier) remove_earlier_run(req.output_dir, comm);
     io::RunOutput output(req.output_dir, cfg, sim, problem->field_grids(sim), problem.get());
     if (req.restart) output.restore_fields(*req.restart, sim.rank());
     output.on_step(sim);

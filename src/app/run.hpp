@@ -20,6 +20,7 @@ struct RunRequest {
     std::string output_dir;    ///< empty: no files besides the summary
     std::string summary_json;  ///< empty: none
     std::string restart_file;  ///< checkpoint to continue from
+    bool overwrite = false;    ///< replace an earlier run in output_dir (--overwrite)
     const io::CheckpointHeader* restart = nullptr;
 };
 

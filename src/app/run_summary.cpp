@@ -12,6 +12,7 @@
 #include "emergent/execution.hpp"
 #include "gpu/device_memory_use.hpp"
 #include "emergent/block_average.hpp"
+#include "emergent/build_info.hpp"
 
 namespace emergent::app {
 
@@ -33,6 +34,24 @@ std::string number(double v) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%.12g", v);
     return buf;
+}
+
+/// A JSON string: quotes, backslashes and control characters escaped.
+std::string quoted(const std::string& text) {
+    std::string out = "\"";
+    for (const char c : text) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(c));
+            out += buf;
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
 }
 
 long long peak_rss_bytes_of_rank() {
@@ -64,6 +83,16 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     };
     json << "{\n";
     field("scene", "\"" + cfg.scene() + "\"");
+    // What was run, so the summary alone says it: every parameter as resolved (defaults,
+    // preset, files, --set), and the build.
+    std::string parameters = "{";
+    for (const auto& [key, value] : cfg.values())
+        parameters += (parameters.size() > 1 ? ", " : "") + quoted(key) + ": " + quoted(value);
+    field("parameters", parameters + "}");
+    field("build", "{\"version\": " + quoted(build::version) + ", \"git_commit\": " +
+                       quoted(build::git_commit) + ", \"build_type\": " + quoted(build::build_type) +
+                       ", \"compiler\": " + quoted(build::compiler) + ", \"cuda\": " +
+                       quoted(build::cuda) + "}");
     field("N", std::to_string(sim.n_global()));
     field("ranks", std::to_string(sim.n_ranks()));
     field("grid", "\"" + std::to_string(dims.x) + "x" + std::to_string(dims.y) + "x" +

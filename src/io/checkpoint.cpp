@@ -3,6 +3,8 @@
 #include "io/checkpoint.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cmath>
 #include <cstdlib>
 #include <cstdio>
@@ -50,13 +52,12 @@ std::vector<double> pack_series(const std::vector<ThermoSample>& series) {
 }
 }  // namespace
 
-void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
-                      const std::vector<ThermoSample>& series,
-                      const std::vector<FieldAccumulator>& fields, const Measures& scene_state) {
+namespace {
+void write_contents(hid_t file, Simulation& sim, const Config& config,
+                    const std::vector<ThermoSample>& series,
+                    const std::vector<FieldAccumulator>& fields, const Measures& scene_state) {
     MPI_Comm comm = sim.comm();
-    const std::string tmp = path + ".tmp";
     {
-        H5Id file = create_file(tmp, comm);
         H5Id root = create_group(file, "checkpoint");
         write_attribute(root, "format", std::string(kFormat));
         write_attribute(root, "scene", config.scene());
@@ -152,6 +153,29 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
             put_body("owner_rank", H5T_NATIVE_INT, 0, body_owner.data(), sizeof(int));
         }
     }
+}
+
+}  // namespace
+
+void write_checkpoint(const std::string& path, Simulation& sim, const Config& config,
+                      const std::vector<ThermoSample>& series,
+                      const std::vector<FieldAccumulator>& fields, const Measures& scene_state) {
+    MPI_Comm comm = sim.comm();
+    const std::string tmp = path + ".tmp";
+    {
+        errno = 0;  // a cause found afterwards is this write's
+        H5Id file = create_file(tmp, comm);
+        try {
+            write_contents(file, sim, config, series, fields, scene_state);
+            file.close_file(tmp);
+        } catch (const IoError& e) {
+            int rank = 0;
+            MPI_Comm_rank(comm, &rank);
+            discard_file(file, tmp, rank == 0);
+            throw IoError("cannot write '" + tmp + "': " + e.what() + "; the last checkpoint '" +
+                          path + "' is unchanged");
+        }
+    }
     // Every rank has closed the file; only then does it replace the previous checkpoint.
     MPI_Barrier(comm);
     int rank = 0;
@@ -159,7 +183,8 @@ void write_checkpoint(const std::string& path, Simulation& sim, const Config& co
     int failed = 0;
     if (rank == 0) failed = std::rename(tmp.c_str(), path.c_str()) != 0;
     MPI_Bcast(&failed, 1, MPI_INT, 0, comm);
-    if (failed) throw IoError("cannot rename '" + tmp + "' to '" + path + "'");
+    if (failed)
+        throw IoError("cannot rename '" + tmp + "' to '" + path + "': " + std::strerror(errno));
 }
 
 namespace {

@@ -111,7 +111,7 @@ FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
     : dir_(dir), stem_(stem), grids_(grids), frames_(grids.size()) {
     const std::string path = dir + "/" + stem + ".h5";
     file_ = H5Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-    if (file_ < 0) throw IoError("cannot create '" + path + "'");
+    if (file_ < 0) throw IoError("cannot create '" + path + "'" + (system_cause().empty() ? "" : ": " + system_cause()));
     H5Id fields = create_group(file_, "fields");
     for (const FieldGrid& g : grids) {
         H5Id group = create_group(fields, g.name);
@@ -124,7 +124,7 @@ FieldWriter::FieldWriter(const std::string& dir, const std::string& stem,
             create_group(qg, "frames");
         }
     }
-    H5Fflush(file_, H5F_SCOPE_GLOBAL);
+    h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush");
 }
 
 FieldWriter::~FieldWriter() = default;
@@ -147,7 +147,7 @@ void FieldWriter::write(std::size_t g, long long step, double time, const FieldF
         add_frame_view(frames, frame_name(k), value,
                        "/fields/" + grid.name + "/" + kQuantities[q] + "/value", k, H5T_NATIVE_DOUBLE);
     }
-    H5Fflush(file_, H5F_SCOPE_GLOBAL);
+    h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush");
     frames_[g].push_back({step, time});
     write_sidecar();
 }

@@ -2,16 +2,54 @@
 // Checked parallel-HDF5 helpers.
 #include "io/h5.hpp"
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 #include "emergent/error.hpp"
 
 namespace emergent::io {
 
+namespace {
+bool g_close_failed = false;
+std::string innermost_h5_error();
+}  // namespace
+
+bool h5_file_close_failed() { return g_close_failed; }
+
+std::string system_cause() {
+    const int e = errno;
+    // Only the reasons of a failed write: others (ENOENT from an earlier probe) may be stale.
+    const bool write_failure = e == ENOSPC || e == EDQUOT || e == EFBIG || e == EIO || e == EROFS;
+    return write_failure ? std::string(std::strerror(e)) : std::string();
+}
+
+void H5Id::close_file(const std::string& path) {
+    if (id_ < 0) return;
+    const hid_t id = id_;
+    id_ = -1;
+    if (H5Fclose(id) < 0) {
+        g_close_failed = true;
+        const std::string cause = system_cause();  // before anything else may set errno
+        const std::string h5 = innermost_h5_error();
+        throw IoError("closing '" + path + "': " + (cause.empty() ? h5 : cause));
+    }
+}
+
+void discard_file(H5Id& file, const std::string& path, bool remover) {
+    if (remover) (void)::truncate(path.c_str(), 0);
+    file.reset();
+    if (remover) std::remove(path.c_str());
+}
+
 void H5Id::reset() {
     if (id_ < 0) return;
     switch (H5Iget_type(id_)) {
-        case H5I_FILE: H5Fclose(id_); break;
+        case H5I_FILE:
+            if (H5Fclose(id_) < 0) g_close_failed = true;
+            break;
         case H5I_GROUP: H5Gclose(id_); break;
         case H5I_DATASET: H5Dclose(id_); break;
         case H5I_DATASPACE: H5Sclose(id_); break;
@@ -43,8 +81,10 @@ std::string innermost_h5_error() {
 void silence_h5_error_stack() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 hid_t h5_check(hid_t status, const std::string& what) {
-    if (status < 0) throw IoError(what + ": " + innermost_h5_error());
-    return status;
+    if (status >= 0) return status;
+    const std::string cause = system_cause();  // before anything else may set errno
+    const std::string h5 = innermost_h5_error();
+    throw IoError(cause.empty() ? what + ": " + h5 : cause + " (" + what + ")");
 }
 
 namespace {
@@ -77,7 +117,11 @@ void write_raw_attribute(hid_t object, const std::string& name, hid_t type, hid_
 H5Id create_file(const std::string& path, MPI_Comm comm) {
     H5Id fapl = file_access(comm);
     const hid_t f = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    if (f < 0) throw IoError("cannot create HDF5 file '" + path + "': " + innermost_h5_error());
+    if (f < 0) {
+        const std::string cause = system_cause();
+        const std::string h5 = innermost_h5_error();
+        throw IoError("cannot create HDF5 file '" + path + "': " + (cause.empty() ? h5 : cause));
+    }
     return H5Id(f);
 }
 

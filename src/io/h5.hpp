@@ -29,13 +29,30 @@ public:
     H5Id& operator=(const H5Id&) = delete;
     operator hid_t() const { return id_; }
     void reset();
+    /// Closes a file now; throws IoError "closing 'path': <cause>" if its last writes fail.
+    void close_file(const std::string& path);
 
 private:
     hid_t id_ = -1;
 };
 
-/// Throws IoError "what: <HDF5's innermost cause>" when `status` < 0; returns it otherwise.
+/// Throws IoError "what: <the system's reason>", or "what: <HDF5's innermost cause>" when the
+/// system gave none, when `status` < 0; returns it otherwise.
 hid_t h5_check(hid_t status, const std::string& what);
+
+/// A file that could not be written whole: emptied first (so that HDF5's last writes as it
+/// closes find room on a full disk), closed, and removed by `remover` (the one rank of a
+/// parallel file that removes it). Never throws.
+void discard_file(H5Id& file, const std::string& path, bool remover);
+
+/// Whether a file's close failed in this process. HDF5 1.10 then keeps the freed file in its
+/// table and crashes when it shuts down (HDFGroup/hdf5#2257): the process must end without
+/// shutting HDF5 down (no MPI_Finalize, whose hook does it).
+bool h5_file_close_failed();
+
+/// The system's reason for the last failed write, when it is one a person can act on
+/// ("No space left on device"), else empty.
+std::string system_cause();
 
 /// Turns off HDF5's printing of its error stack (failures become one IoError line each).
 void silence_h5_error_stack();

@@ -200,7 +200,7 @@ H5mdWriter::~H5mdWriter() = default;
 
 void H5mdWriter::write_particles(const ParticleStore& store, long long step, double time) {
     write_group("p/", store, meta_.n_global, meta_.elements, step, time);
-    H5Fflush(file_, H5F_SCOPE_GLOBAL);
+    flush();
 }
 
 void H5mdWriter::write_bodies(const ParticleStore& bodies, long long step, double time, const Measures& extra) {
@@ -222,7 +222,7 @@ void H5mdWriter::write_observable(const std::string& name, long long step, doubl
     series->append(step, time, value.data(), 0, rows, comm_);
 }
 
-void H5mdWriter::flush() { H5Fflush(file_, H5F_SCOPE_GLOBAL); }
+void H5mdWriter::flush() { h5_check(H5Fflush(file_, H5F_SCOPE_GLOBAL), "flush"); }
 
 void H5mdWriter::finish() {
     if (file_ < 0) return;
@@ -232,7 +232,7 @@ void H5mdWriter::finish() {
     series_.clear();
     observables_.reset();
     particles_.reset();
-    file_.reset();
+    file_.close_file(sidecar_ + ".h5");  // a run whose last writes failed does not end well
 }
 
 }  // namespace emergent::io

@@ -3,6 +3,7 @@
 #include "io/run_output.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <exception>
 #include <sstream>
 #include <utility>
@@ -11,6 +12,19 @@
 #include "emergent/error.hpp"
 
 namespace emergent::io {
+
+namespace {
+/// Runs `write`; an I/O failure in it names the file it was writing.
+template <class Write>
+void writing(const std::string& path, Write&& write) {
+    errno = 0;  // a cause found afterwards is this write's, not an earlier probe's
+    try {
+        write();
+    } catch (const IoError& e) {
+        throw IoError("cannot write '" + path + "': " + e.what());
+    }
+}
+}  // namespace
 
 std::vector<std::string> parse_elements(const std::string& scene, const std::string& text) {
     std::vector<std::string> items;
@@ -53,6 +67,7 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
         sim.step_index() > 0 ? ".from" + std::to_string(sim.step_index()) : std::string();
     if (field_interval_ > 0) {
         for (const FieldGrid& g : grids) fields_.emplace_back(g);
+        fields_path_ = dir + "/fields" + suffix + ".h5";
         if (sim.rank() == 0)
             field_writer_ = std::make_unique<FieldWriter>(dir, "fields" + suffix, grids);
     }
@@ -65,8 +80,10 @@ RunOutput::RunOutput(const std::string& dir, const Config& config, Simulation& s
     meta.n_global = sim.n_global();
     meta.n_bodies = sim.has_bodies() ? sim.n_bodies_global() : 0;
     meta.elements = elements;
-    trajectory_ =
-        std::make_unique<H5mdWriter>(dir + "/trajectory" + suffix + ".h5", sim.comm(), meta);
+    trajectory_path_ = dir + "/trajectory" + suffix + ".h5";
+    writing(trajectory_path_, [&] {
+        trajectory_ = std::make_unique<H5mdWriter>(trajectory_path_, sim.comm(), meta);
+    });
     if (sim.n_ranks() > 1) MPI_Comm_dup(sim.comm(), &unwinding_);
 }
 
@@ -85,18 +102,21 @@ RunOutput::~RunOutput() {
 
 void RunOutput::on_sample(const ThermoSample& t, const Measures& scene_measures) {
     if (!trajectory_) return;
-    for (const auto& [name, value] : scene_measures)
-        trajectory_->write_observable(name, t.step, t.time, value);
-    trajectory_->write_observable("kinetic_energy", t.step, t.time, {t.kinetic});
-    trajectory_->write_observable("potential_energy", t.step, t.time, {t.potential});
-    trajectory_->write_observable("total_energy", t.step, t.time, {t.total});
-    trajectory_->write_observable("temperature", t.step, t.time, {t.temperature});
-    trajectory_->write_observable("pressure", t.step, t.time, {t.pressure});
-    trajectory_->write_observable("momentum", t.step, t.time,
-                                  {t.momentum.x, t.momentum.y, t.momentum.z});
-    if (t.max_overlap >= 0) trajectory_->write_observable("max_overlap", t.step, t.time, {t.max_overlap});
-    // A killed run keeps its series up to the last sample (particle frames may be rare).
-    trajectory_->flush();
+    writing(trajectory_path_, [&] {
+        for (const auto& [name, value] : scene_measures)
+            trajectory_->write_observable(name, t.step, t.time, value);
+        trajectory_->write_observable("kinetic_energy", t.step, t.time, {t.kinetic});
+        trajectory_->write_observable("potential_energy", t.step, t.time, {t.potential});
+        trajectory_->write_observable("total_energy", t.step, t.time, {t.total});
+        trajectory_->write_observable("temperature", t.step, t.time, {t.temperature});
+        trajectory_->write_observable("pressure", t.step, t.time, {t.pressure});
+        trajectory_->write_observable("momentum", t.step, t.time,
+                                      {t.momentum.x, t.momentum.y, t.momentum.z});
+        if (t.max_overlap >= 0)
+            trajectory_->write_observable("max_overlap", t.step, t.time, {t.max_overlap});
+        // A killed run keeps its series up to the last sample (particle frames may be rare).
+        trajectory_->flush();
+    });
     if (snapshot_) {
         snapshot_->on_measures(t.step, t.time, scene_measures);
         snapshot_->on_measures(t.step, t.time,
@@ -119,23 +139,32 @@ void RunOutput::on_step(Simulation& sim) {
     if (!fields_.empty() && step % field_interval_ == 0 && fields_.front().samples() > 0) {
         for (std::size_t g = 0; g < fields_.size(); ++g) {
             const FieldFrame frame = fields_[g].take(sim.comm());
-            if (field_writer_) field_writer_->write(g, step, sim.time(), frame);
+            if (field_writer_)
+                writing(fields_path_, [&] { field_writer_->write(g, step, sim.time(), frame); });
             if (snapshot_) snapshot_->on_fields(g, frame);
             if (scene_ && g > 0) {  // grid 0 is the run's box grid, the others the scene's
                 const Measures found = scene_->analyse_fields(fields_[g].grid(), frame);
-                for (const auto& [name, value] : found)
-                    trajectory_->write_observable(name, step, sim.time(), value);
+                writing(trajectory_path_, [&] {
+                    for (const auto& [name, value] : found)
+                        trajectory_->write_observable(name, step, sim.time(), value);
+                });
                 if (snapshot_) snapshot_->on_measures(step, sim.time(), found);
             }
         }
-        trajectory_->flush();
+        writing(trajectory_path_, [&] { trajectory_->flush(); });
         if (snapshot_) snapshot_->maybe_write(step, sim.time());
     }
     const bool due = last_frame_ < 0 || (every_ > 0 && step % every_ == 0);
     if (!due || step == last_frame_) return;
-    trajectory_->write_particles(std::as_const(sim).particles(), step, sim.time());
-    if (sim.has_bodies()) write_bodies(sim);
-    last_frame_ = step;
+    write_frame(sim);
+}
+
+void RunOutput::write_frame(Simulation& sim) {
+    writing(trajectory_path_, [&] {
+        trajectory_->write_particles(std::as_const(sim).particles(), sim.step_index(), sim.time());
+        if (sim.has_bodies()) write_bodies(sim);
+    });
+    last_frame_ = sim.step_index();
 }
 
 void RunOutput::write_bodies(Simulation& sim) {
@@ -153,11 +182,8 @@ void RunOutput::restore_fields(const CheckpointHeader& checkpoint, int rank) {
 
 void RunOutput::finish(Simulation& sim) {
     if (!trajectory_) return;
-    if (sim.step_index() != last_frame_) {
-        trajectory_->write_particles(std::as_const(sim).particles(), sim.step_index(), sim.time());
-        if (sim.has_bodies()) write_bodies(sim);
-    }
-    trajectory_->finish();
+    if (sim.step_index() != last_frame_) write_frame(sim);
+    writing(trajectory_path_, [&] { trajectory_->finish(); });
     trajectory_.reset();
     if (snapshot_) snapshot_->maybe_write(sim.step_index(), sim.time(), true);
 }

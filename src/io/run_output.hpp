@@ -47,7 +47,10 @@ public:
 private:
     /// A frame of the rigid bodies, with the scene's per-body values.
     void write_bodies(Simulation& sim);
+    /// A particle frame (and the bodies') of this step.
+    void write_frame(Simulation& sim);
 
+    std::string trajectory_path_, fields_path_;
     std::unique_ptr<H5mdWriter> trajectory_;
     long long every_ = 0, last_frame_ = -1;
     // Coarse-grained fields: accumulated on every rank, written by rank 0.

@@ -2,7 +2,9 @@
 // The watch snapshot: a whole new file each time, renamed over the last.
 #include "io/watch_snapshot.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <utility>
 
 #include "emergent/error.hpp"
@@ -81,9 +83,21 @@ void write_doubles(hid_t parent, const std::string& name, const std::vector<hsiz
 
 void WatchSnapshot::write(long long step, double time, bool final) const {
     const std::string path = dir_ + "/snapshot.h5", tmp = path + ".tmp";
+    H5Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+    if (file < 0) throw IoError("cannot create '" + tmp + "'" + (system_cause().empty() ? "" : ": " + system_cause()));
+    try {
+        write_contents(file, step, time, final);
+        file.close_file(tmp);
+    } catch (const IoError& e) {
+        discard_file(file, tmp, true);
+        throw IoError("cannot write '" + tmp + "': " + e.what());
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0)
+        throw IoError("cannot rename '" + tmp + "' to '" + path + "': " + std::strerror(errno));
+}
+
+void WatchSnapshot::write_contents(hid_t file, long long step, double time, bool final) const {
     {
-        H5Id file(H5Fcreate(tmp.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
-        if (file < 0) throw IoError("cannot create '" + tmp + "'");
         write_attribute(file, "scene", scene_);
         write_attribute(file, "step", step);
         write_attribute(file, "time", time);
@@ -112,8 +126,6 @@ void WatchSnapshot::write(long long step, double time, bool final) const {
         H5Id latest = create_group(file, "latest");
         for (const auto& [name, v] : latest_) write_doubles(latest, name, {v.size()}, v.data());
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0)
-        throw IoError("cannot rename '" + tmp + "' to '" + path + "'");
 }
 
 }  // namespace emergent::io

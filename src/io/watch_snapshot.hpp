@@ -2,6 +2,8 @@
 // A small file for watching a run while it goes: the latest fields and the scene's measures.
 #pragma once
 
+#include <hdf5.h>
+
 #include <chrono>
 #include <map>
 #include <string>
@@ -42,6 +44,7 @@ private:
         void add(long long s, double t, double v);
     };
     void write(long long step, double time, bool final) const;
+    void write_contents(hid_t file, long long step, double time, bool final) const;
 
     std::string dir_, scene_;
     std::vector<FieldGrid> grids_;

@@ -5,7 +5,12 @@
 #  2. an array of 2 seeds runs each seed into a directory of its own;
 #  3. a chain: a job is signalled as at its time limit (scancel --signal=USR1 --batch), the run
 #     checkpoints and stops, the job submits its successor, which continues to the end; the
-#     chain's log names at least two jobs and the result is bit for bit the uninterrupted run's.
+#     chain's log names at least two jobs and the result is bit for bit the uninterrupted run's;
+#  4. a new job into a directory that holds a run (the first one's) is refused in one line,
+#     before it writes anything there;
+#  5. a job requeued after its node failed (simulated: the first start's run, stopped with a
+#     checkpoint, and its line in the chain's log; SLURM_RESTART_COUNT given to the job)
+#     continues from that checkpoint, bit for bit the uninterrupted run.
 # Then it tears it all down. Needs Debian's slurmctld slurmd slurm-client munge, which
 # `scripts/setup --tests` installs (the README's test command): missing, the test fails.
 # EMERGENT_TEST_SLURM=0 skips it (exit 77, reported as skipped). Facts it relies on:
@@ -138,3 +143,36 @@ at=$(sed -n "s/^job $first: stopped at step \([0-9]*\);.*/\1/p" "$chain_log")
 [ -n "$at" ] || { echo "FAIL: job $first did not stop and resubmit"; exit 1; }
 /usr/bin/python3 "$root/tests/support/same_last_frame.py" "$work/straight/trajectory.h5" \
   "$work/chain/trajectory.from$at.h5" "the chain signalled at step $at and continued over $jobs jobs"
+
+# 4. Into a directory that holds a run: refused before the job writes there (its chain log too).
+before=$(cat "$work/tiny/slurm_chain.log")
+again=$(sbatch --parsable "${yield[@]}" -n 1 --time=5 -o "$work/again.out" -D "$work" "$root/scripts/slurm/emergent.sbatch" \
+  lj-fluid --preset tiny --set progress_interval=0 -o "$work/tiny")
+for _ in $(seq 120); do squeue -h -j "$again" 2>/dev/null | grep -q . || break; sleep 0.5; done
+if ! grep -q "tiny holds an earlier run" "$work/again.out" || [ "$(cat "$work/tiny/slurm_chain.log")" != "$before" ]; then
+  echo "FAIL: job $again into a directory holding a run was not refused before writing there"
+  cat "$work/again.out"; exit 1
+fi
+echo "ok: $(cat "$work/again.out")"
+
+# 5. A requeued job. Its first start is a run stopped in this directory with a checkpoint; the
+# job is held until the chain's log names it as that start.
+mpirun -q --oversubscribe -np 2 "$exe" run "${run_args[@]}" -o "$work/requeued" >/dev/null 2>&1 &
+started=$!
+for _ in $(seq 200); do [ -f "$work/requeued/trajectory.h5" ] && break; sleep 0.1; done
+sleep 1
+kill -TERM $started
+wait $started || true
+[ -f "$work/requeued/checkpoint.h5" ] || { echo "FAIL: the first start left no checkpoint"; exit 1; }
+requeued=$(sbatch --parsable --hold --export=ALL,OMPI_MCA_mpi_yield_when_idle=1,SLURM_RESTART_COUNT=1 -n 2 --time=5 \
+  -o "$work/requeued.out" -D "$work" "$root/scripts/slurm/emergent.sbatch" "${run_args[@]}" -o "$work/requeued")
+echo "job $requeued: began at step 0 on 2 task(s) (its first start)" >"$work/requeued/slurm_chain.log"
+scontrol release "$requeued"
+for _ in $(seq 240); do squeue -h -j "$requeued" 2>/dev/null | grep -q . || break; sleep 0.5; done
+if ! grep -q "requeued: continues from its first start's checkpoint" "$work/requeued/slurm_chain.log" ||
+   ! grep -q "run complete" "$work/requeued/slurm_chain.log"; then
+  echo "FAIL: the requeued job did not continue its first start"; cat "$work/requeued/slurm_chain.log" "$work/requeued.out"
+  exit 1
+fi
+/usr/bin/python3 "$root/tests/support/same_last_frame.py" "$work/straight/trajectory.h5" \
+  "$(ls "$work"/requeued/trajectory.from*.h5)" "the requeued job continued from its first start's checkpoint"
