@@ -6,7 +6,8 @@
 # paper's growth-step probabilities, not seeded patches), at that interval and at twice it.
 # usage:
 #   benchmarks/capsid_assembly_long.sh run OUT E SEED        starts OUT/e<E>_seed<SEED>, or
-#       continues it from its checkpoint; runs until STEPS (1e8) or SIGUSR1/SIGTERM (a checkpoint
+#       continues it from its checkpoint; runs until STEPS (1e8), then removes its checkpoint, or
+#       until SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
 #       CAPSOMERS (300), PARTICLE_FRACTION (Table 1's 0.033), SOLVENT (implicit), DT (the scene's 0.005; the implicit solvent holds
 #       to 0.02, benchmarks/RESULTS.md "A longer step in the implicit solvent"), SAMPLE (100 tau),
@@ -91,13 +92,16 @@ run)
   if [ -f "$dir/checkpoint.h5" ]; then
     [ -n "${DT:-}" ] || intervals=()
     for kv in ${ADJUST:-}; do intervals+=(--set "$kv"); done
-    exec "$exe" run --restart "$dir/checkpoint.h5" ${DT:+--set dt="$DT"} "${intervals[@]}" -o "$dir"
+    "$exe" run --restart "$dir/checkpoint.h5" ${DT:+--set dt="$DT"} "${intervals[@]}" -o "$dir" || exit
+    rm -f "$dir/checkpoint.h5"  # the run has ended: nothing is kept to continue it
+    exit 0
   fi
   extra=()
   for kv in ${SET:-}; do extra+=(--set "$kv"); done
-  exec "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction="${PARTICLE_FRACTION:-0.033}" \
+  "$exe" run capsid-assembly "${extra[@]}" --set capsomers="${CAPSOMERS:-300}" --set particle_fraction="${PARTICLE_FRACTION:-0.033}" \
     --set solvent="${SOLVENT:-implicit}" --set start=monomers --set attraction="$2" --set seed="$3" \
-    --set dt="$dt" --set steps="${STEPS:-100000000}" "${intervals[@]}" --set progress_interval=600 -o "$dir"
+    --set dt="$dt" --set steps="${STEPS:-100000000}" "${intervals[@]}" --set progress_interval=600 -o "$dir" || exit
+  rm -f "$dir/checkpoint.h5"  # the run has ended: nothing is kept to continue it
   ;;
 table)
   [ $# -ge 1 ] || { echo "usage: $0 table RUN_DIR..." >&2; exit 2; }
@@ -133,11 +137,11 @@ for run in sys.argv[1:]:
     if shell_mass[-1] > 0:
         half = t[np.argmax(shell_mass >= 0.5 * shell_mass[-1])]
         print(f"# mass in complete shells at the end: {shell_mass[-1]:.3f}; half of it first at {half:g} tau")
-    # The tallies' interval: the latest checkpoint's events_every (0: the samples').
-    with h5py.File(os.path.join(run, "checkpoint.h5"), "r") as h:
-        cfg = h["checkpoint/config"].attrs
-        interval = int(cfg["events_every"]) if "events_every" in cfg and int(cfg["events_every"]) > 0 else int(cfg["sample_every"])
-        dt = float(cfg["dt"])
+    # The tallies' interval: the latest segment's events_every (0: the samples'); a run that
+    # ended has no checkpoint left.
+    cfg = Run(run).parameters()
+    interval = int(cfg["events_every"]) if int(cfg.get("events_every", 0)) > 0 else int(cfg["sample_every"])
+    dt = float(cfg["dt"])
     tally = {n: series(run, n)[1][-1] for n in ("growth_events", "loss_events", "growth_events_coarse", "loss_events_coarse")}
     print(f"# growth steps from the tallies at the last sample (censuses every {interval} steps of {dt:g} since that interval was set):")
     step_table(tally, interval, dt)

@@ -14,12 +14,14 @@
 #        pair system that the engine replaced (3.7e9 atom-steps/s on an H100), built from the
 #        last commit that had it into build-reference/, so gpu_check.sh measures the engine
 #        beside it on the same device.
-# Exit: 0 packed and tried; 1 too large or a program does not start; 2 not built.
+# Exit: 0 packed and tried; 1 too large (the bundle, or with the tree and ../shared over 64 MiB)
+#       or a program does not start; 2 not built.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 dir=$(realpath -m "${1:-gpu_bundle}")
 build=${BUILD_DIR:-build}
-limit_mib=50
+limit_mib=50   # the bundle alone
+travel_mib=64  # bundle, working tree and ../shared together (the device tool's limit)
 programs=(gpu_tests emergent)
 reference_commit=d91cbba24cdb  # the last commit with src/gpu/periodic_pair_system.cu
 multi=/usr/lib/x86_64-linux-gnu  # Debian's Open MPI and PMIx live below it
@@ -134,13 +136,21 @@ if [ -n "$outside" ]; then
 fi
 echo "gpu_bundle.sh: 2 ranks from the bundle ran here (isolated from this machine's Open MPI: $isolated)"
 [ $status -eq 0 ] || exit $status
-# What travels is one compressed file (the libraries shrink about fourfold).
+# What travels is one compressed file (the libraries shrink about fourfold), beside the working
+# tree git does not ignore and ../shared: the three together may not pass 64 MiB, or the device
+# refuses the run before it starts.
 archive="$dir.tar.xz"
 tar -cf - -C "$(dirname "$dir")" "$(basename "$dir")" | xz -T0 -6 >"$archive"
-size=$(( ($(stat -c %s "$archive") + 1048575) / 1048576 ))
-if [ "$size" -gt "$limit_mib" ]; then
-  echo "gpu_bundle.sh: $archive is $size MiB, over the $limit_mib MiB that may travel" >&2
+mib() { echo $(( ($1 + 1048575) / 1048576 )); }
+archive_bytes=$(stat -c %s "$archive")
+tree_bytes=$(git ls-files -z --cached --others --exclude-standard | du -cb --files0-from=- 2>/dev/null | tail -n 1 | cut -f1)
+shared_bytes=$( [ -d ../shared ] && du -sb ../shared | cut -f1 || echo 0)
+total=$(( archive_bytes + tree_bytes + shared_bytes ))
+if [ "$(mib "$archive_bytes")" -gt "$limit_mib" ] || [ "$total" -gt $(( travel_mib * 1048576 )) ]; then
+  echo "gpu_bundle.sh: what would travel is $(mib "$total") MiB (bundle $(mib "$archive_bytes")," \
+       "tree $(mib "$tree_bytes"), ../shared $(mib "$shared_bytes")), over the $travel_mib MiB" \
+       "the device takes (the bundle alone may have $limit_mib)" >&2
   exit 1
 fi
-echo "gpu_bundle.sh: $archive ($size MiB; $(du -sm "$dir" | cut -f1) MiB unpacked) packed and tried:" \
-     "carry it and run bash benchmarks/gpu_check.sh"
+echo "gpu_bundle.sh: $archive ($(mib "$archive_bytes") MiB; $(du -sm "$dir" | cut -f1) MiB unpacked) packed and" \
+     "tried; with the tree and ../shared $(mib "$total") of $travel_mib MiB: carry it and run bash benchmarks/gpu_check.sh"
