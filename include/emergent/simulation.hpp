@@ -79,6 +79,8 @@ struct RunSettings {
     ListLayout list_layout = ListLayout::Auto;
     LoadBalance balance = LoadBalance::None;
     long long balance_every = 0;  ///< steps between rebalances with LoadBalance::Cost; 0: start only
+    /// Steps before the measured phase (run parameter `equilibration_steps`).
+    long long equilibration_steps = 0;
     /// Refresh ghosts while computing the pair forces that need none (Simulation::halo_overlap()
     /// says where it applies). It orders the owned particles interior first, so its results
     /// are round-off apart from those without (the same bits as without it but in that order).
@@ -307,6 +309,15 @@ public:
     long long step_index() const;
     double time() const;
     double dt() const;
+    // What a scene asks of time and range, instead of reading the engine's settings.
+    /// The time the measured phase begins (equilibration_steps x dt): scenes average from here.
+    double measurement_start() const;
+    /// The steps that make up `duration` (at least one): a scene's period is a time, so its
+    /// schedule does not change with dt.
+    long long steps_in(double duration) const;
+    /// How far the neighbour list reaches: the longest cutoff of the force terms added so far
+    /// plus the skin. Ghost images and wedges must cover it.
+    double interaction_range() const;
     long long rebuilds() const;
     double degrees_of_freedom() const;
     const std::vector<double>& species_masses() const;

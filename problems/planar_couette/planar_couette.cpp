@@ -19,8 +19,7 @@ class PlanarCouette final : public Problem {
 public:
     explicit PlanarCouette(const Config& c)
         : config_(c), width_(c.real("width")), height_(c.real("height")),
-          speed_(c.real("wall_speed")),
-          start_time_(c.integer("equilibration_steps") * c.real("dt")) {}
+          speed_(c.real("wall_speed")) {}
 
     void build(Simulation& sim) override {
         sim_ = &sim;
@@ -88,7 +87,7 @@ public:
         last_top_ = top.momentum.x, last_bottom_ = bottom.momentum.x, last_time_ = sim_->time();
         // Slip: how far the fluid at the wall lags the wall, in units of the gradient.
         const double slip = (0.5 * speed_ - (offset + rate * height_)) / rate;
-        if (sim_->time() > start_time_ + 1e-9) {
+        if (sim_->time() > sim_->measurement_start() + 1e-9) {
             stress_.add(stress), rate_.add(rate), density_.add(density);
             temperature_.add(temperature), slip_.add(slip);
         }
@@ -137,7 +136,7 @@ public:
 
 private:
     Config config_;
-    double width_, height_, speed_, start_time_;
+    double width_, height_, speed_;
     Simulation* sim_ = nullptr;
     BoundaryRule *bottom_ = nullptr, *top_ = nullptr;
     double last_top_ = 0, last_bottom_ = 0, last_time_ = 0;

@@ -30,8 +30,7 @@ public:
           t_hot_(c.real("t_hot")), t_cold_(c.real("t_cold")),
           // g = scale x 3 dT / (2 Lz): at scale 1 the potential energy an atom loses falling
           // through the layer equals the kinetic energy 3 dT / 2 it gains from the walls.
-          gravity_(c.real("gravity_scale") * 1.5 * (c.real("t_hot") - c.real("t_cold")) / c.real("height")),
-          start_time_(c.integer("equilibration_steps") * c.real("dt")) {
+          gravity_(c.real("gravity_scale") * 1.5 * (c.real("t_hot") - c.real("t_cold")) / c.real("height")) {
         if (!(t_hot_ > t_cold_) && c.real("gravity_scale") > 0)
             throw InputError(c.scene() + ": t_hot=" + std::to_string(t_hot_) +
                              " must exceed t_cold (heated from below)");
@@ -50,7 +49,7 @@ public:
         // A period in time, not in steps: the layers' pull towards the wall temperature (and
         // with it the heat flux, ~2 % between periods 0.02 and 0.1) must not change with dt.
         const double period = config_.real("layer_period");
-        const auto every = std::max<long long>(1, std::llround(period / config_.real("dt")));
+        const long long every = sim.steps_in(period);
         if (layer > 0) {
             bottom_layer_ = sim.add_wall_layer(
                 std::make_unique<WallLayerThermostat>(2, -1.0, layer, t_hot_, every));
@@ -196,7 +195,7 @@ private:
         have_last_ = true;
         last_bottom_ = bottom, last_top_ = top, last_time_ = now;
         const double flux = 0.5 * (in + out);
-        if (now > start_time_ + 1e-9 && std::isfinite(flux)) flux_.add(flux);
+        if (now > sim_->measurement_start() + 1e-9 && std::isfinite(flux)) flux_.add(flux);
         latest_flux_ = flux;
         const double reference = config_.real("conduction_flux");
         Measures m = {{"heat_flux", {in, out, flux}}};
@@ -230,7 +229,7 @@ private:
         std::vector<double> xy(2 * max_cells, kNaN);
         for (std::size_t k = 0; k < centres.size() && k < max_cells; ++k)
             xy[2 * k] = centres[k][0], xy[2 * k + 1] = centres[k][1];
-        if (sim_->time() > start_time_ + 1e-9) cells_.add(cells.cells);
+        if (sim_->time() > sim_->measurement_start() + 1e-9) cells_.add(cells.cells);
         latest_cells_ = cells.cells;
         std::vector<double> histogram(cells.edge_histogram.begin(), cells.edge_histogram.end());
         return {{"cell_count", {double(cells.cells)}},
@@ -245,7 +244,7 @@ private:
     }
 
     Config config_;
-    double lx_, ly_, lz_, t_hot_, t_cold_, gravity_, start_time_;
+    double lx_, ly_, lz_, t_hot_, t_cold_, gravity_;
     Simulation* sim_ = nullptr;
     BoundaryRule *bottom_ = nullptr, *top_ = nullptr;
     WallLayerThermostat *bottom_layer_ = nullptr, *top_layer_ = nullptr;

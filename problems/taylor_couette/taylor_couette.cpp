@@ -26,17 +26,6 @@ public:
           length_(c.real("length")), omega_(c.real("omega")),
           wedge_n_(static_cast<int>(c.integer("wedge"))),
           periodic_ends_(c.text("ends") == "periodic") {
-        if (wedge_n_ >= 2) {
-            // The images of one turn must cover the ghost shell: the wedge must be at least
-            // cutoff + skin wide at the inner cylinder (a narrower one needs images of images).
-            const double alpha = kTwoPi / wedge_n_, shell = std::pow(2.0, 1.0 / 6.0) + c.real("skin");
-            const double width = r_i_ * std::sin(std::min(alpha, 0.25 * kTwoPi));
-            if (width < shell)
-                throw InputError(c.scene() + ": wedge=" + c.text("wedge") + " is " +
-                                 std::to_string(width) + " wide at r_inner=" + c.text("r_inner") +
-                                 ", narrower than the interaction range cutoff + skin = " +
-                                 std::to_string(shell) + ": use a smaller wedge count");
-        }
         const double nu = c.real("kinematic_viscosity");
         const double eta = r_i_ / r_o_, d = r_o_ - r_i_;
         reynolds_ = omega_ * r_i_ * d / nu;
@@ -66,6 +55,18 @@ public:
     }
 
     void build(Simulation& sim) override {
+        sim.add_force(make_wca());
+        if (wedge_n_ >= 2) {
+            // The images of one turn must cover the ghost shell: the wedge must be at least
+            // cutoff + skin wide at the inner cylinder (a narrower one needs images of images).
+            const double alpha = kTwoPi / wedge_n_, shell = sim.interaction_range();
+            const double width = r_i_ * std::sin(std::min(alpha, 0.25 * kTwoPi));
+            if (width < shell)
+                throw InputError(config_.scene() + ": wedge=" + config_.text("wedge") + " is " +
+                                 std::to_string(width) + " wide at r_inner=" + config_.text("r_inner") +
+                                 ", narrower than the interaction range cutoff + skin = " +
+                                 std::to_string(shell) + ": use a smaller wedge count");
+        }
         Box box;
         const double margin = 0.5;  // the box reaches past the walls: particles on a wall are inside
         if (wedge_n_ >= 2) {
@@ -95,7 +96,6 @@ public:
         const bool split[3] = {false, false, true};
         sim.set_box(box, split);
         sim.set_species_masses({1.0});
-        sim.add_force(make_wca());
 
         const double kT = config_.real("wall_temperature");
         const auto seed = static_cast<std::uint64_t>(config_.integer("seed"));

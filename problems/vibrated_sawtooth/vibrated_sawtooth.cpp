@@ -54,9 +54,6 @@ public:
         const double ratio = d_big_ / d_small_;
         mass_[kSmall] = 1.0;
         mass_[kBig] = ratio * ratio * ratio;
-        const double cycle_time = 1.0 / frequency_;
-        const double start = c.integer("equilibration_steps") * c.real("dt");
-        for (auto* a : {&flux_, &flux_small_, &flux_big_}) *a = CycleAverage(cycle_time, start);
         const auto bins = static_cast<std::size_t>(c.integer("profile_bins"));
         for (int s = 0; s < 2; ++s) {
             profile_sum_[s].assign(bins, 0.0);
@@ -65,6 +62,9 @@ public:
     }
 
     void build(Simulation& sim) override {
+        // Cycle averages count from the measured phase's start.
+        for (auto* a : {&flux_, &flux_small_, &flux_big_})
+            *a = CycleAverage(1.0 / frequency_, sim.measurement_start());
         draw_grains();
         Box box;
         // The top is open in the paper (out of the grains' reach); here the box ends 20 above

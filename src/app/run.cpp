@@ -107,6 +107,7 @@ RunSettings run_settings(const Config& cfg) {
                                               : ListLayout::Auto;
     settings.balance = cfg.text("balance") == "cost" ? LoadBalance::Cost : LoadBalance::None;
     settings.balance_every = cfg.integer("balance.every");
+    settings.equilibration_steps = cfg.integer("equilibration_steps");
     settings.overlap_halo = cfg.text("halo_overlap") == "on";
     settings.interior_order = cfg.text("halo_overlap") == "ordered";
     return settings;

@@ -1372,6 +1372,17 @@ long long Simulation::n_global() const { return engine_->n_global; }
 long long Simulation::step_index() const { return engine_->step; }
 double Simulation::time() const { return engine_->time; }
 double Simulation::dt() const { return engine_->settings.dt; }
+double Simulation::measurement_start() const {
+    return static_cast<double>(engine_->settings.equilibration_steps) * engine_->settings.dt;
+}
+long long Simulation::steps_in(double duration) const {
+    return std::max<long long>(1, std::llround(duration / engine_->settings.dt));
+}
+double Simulation::interaction_range() const {
+    double cutoff = 0;
+    for (const auto& term : engine_->forces) cutoff = std::max(cutoff, term->cutoff());
+    return cutoff + engine_->settings.skin;
+}
 KineticParts Simulation::kinetic_parts() const {
     const Engine& e = *engine_;
     e.backend_reads(kVelocity | kSpecies | kBody);

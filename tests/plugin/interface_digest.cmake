@@ -34,4 +34,10 @@ if(NOT tag STREQUAL recorded_tag)
   message(FATAL_ERROR "EMERGENT_PLUGIN_ABI is ${tag} but the recorded interface is ${recorded_tag} "
                       "with the same headers: a bump without an interface change")
 endif()
+# Each tag says what changed, in docs/plugin_abi.md ("| 34 | ... |").
+string(REGEX MATCH "[0-9]+$" number "${tag}")
+file(READ ${ROOT}/docs/plugin_abi.md changes)
+if(NOT changes MATCHES "\n\\| ${number} \\| [^|\n]*[A-Za-z]")
+  message(FATAL_ERROR "docs/plugin_abi.md has no row for ${tag}: say what changed ('| ${number} | ... |')")
+endif()
 message(STATUS "plugin interface ${tag}: ${digest}")
