@@ -9,12 +9,12 @@
 #include <sstream>
 #include <vector>
 
-#include "emergent/capsomer.hpp"
+#include "emergent/kit/capsomer.hpp"
 #include "emergent/error.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
-#include "emergent/site_bonds.hpp"
+#include "emergent/kit/site_bonds.hpp"
 #include "emergent/thermostat.hpp"
 
 namespace emergent::problems {

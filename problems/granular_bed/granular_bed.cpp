@@ -3,7 +3,7 @@
 // y; the granular benchmark and validation workhorse (compare LAMMPS `pair_style gran/hooke`).
 #include <cmath>
 
-#include "emergent/body_shapes.hpp"
+#include "emergent/kit/body_shapes.hpp"
 #include "emergent/error.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/random.hpp"

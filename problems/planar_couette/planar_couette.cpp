@@ -7,7 +7,7 @@
 
 #include "emergent/block_average.hpp"
 #include "emergent/error.hpp"
-#include "emergent/lattice.hpp"
+#include "emergent/kit/lattice.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 

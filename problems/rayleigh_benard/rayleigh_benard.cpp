@@ -10,10 +10,10 @@
 #include <string>
 
 #include "emergent/block_average.hpp"
-#include "emergent/cell_pattern.hpp"
+#include "emergent/kit/cell_pattern.hpp"
 #include "emergent/error.hpp"
-#include "emergent/lattice.hpp"
-#include "emergent/planar_noise.hpp"
+#include "emergent/kit/lattice.hpp"
+#include "emergent/kit/planar_noise.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 

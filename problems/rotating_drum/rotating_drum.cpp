@@ -6,12 +6,12 @@
 #include <cmath>
 #include <vector>
 
-#include "emergent/body_shapes.hpp"
+#include "emergent/kit/body_shapes.hpp"
 #include "emergent/error.hpp"
-#include "emergent/lattice.hpp"
+#include "emergent/kit/lattice.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/random.hpp"
-#include "emergent/segregation.hpp"
+#include "emergent/kit/segregation.hpp"
 #include "emergent/simulation.hpp"
 
 namespace emergent::problems {

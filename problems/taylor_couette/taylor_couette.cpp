@@ -6,10 +6,10 @@
 #include <cmath>
 #include <limits>
 
-#include "emergent/couette_stability.hpp"
+#include "emergent/kit/couette_stability.hpp"
 #include "emergent/error.hpp"
-#include "emergent/flow_analysis.hpp"
-#include "emergent/lattice.hpp"
+#include "emergent/kit/flow_analysis.hpp"
+#include "emergent/kit/lattice.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 

@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "emergent/boundary.hpp"
-#include "emergent/cycle_average.hpp"
+#include "emergent/kit/cycle_average.hpp"
 #include "emergent/error.hpp"
-#include "emergent/lattice.hpp"
+#include "emergent/kit/lattice.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/random.hpp"
-#include "emergent/segregation.hpp"
+#include "emergent/kit/segregation.hpp"
 #include "emergent/simulation.hpp"
 
 namespace emergent::problems {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "emergent/couette_stability.hpp"
+#include "emergent/kit/couette_stability.hpp"
 
 namespace po = boost::program_options;
 

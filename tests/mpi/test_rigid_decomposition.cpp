@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "emergent/body_shapes.hpp"
+#include "emergent/kit/body_shapes.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
 #include "support/scene_fixture.hpp"

@@ -15,12 +15,12 @@
 #include <set>
 #include <utility>
 
-#include "emergent/capsomer.hpp"
+#include "emergent/kit/capsomer.hpp"
 #include "emergent/error.hpp"
 #include "emergent/force_term.hpp"
 #include "emergent/random.hpp"
 #include "emergent/simulation.hpp"
-#include "emergent/site_bonds.hpp"
+#include "emergent/kit/site_bonds.hpp"
 
 using namespace emergent;
 

@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "emergent/error.hpp"
-#include "emergent/planar_noise.hpp"
+#include "emergent/kit/planar_noise.hpp"
 #include "emergent/problem.hpp"
 #include "emergent/simulation.hpp"
 #include "observe/field_accumulator.hpp"

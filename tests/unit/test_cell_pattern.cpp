@@ -6,7 +6,7 @@
 #include <cmath>
 #include <random>
 
-#include "emergent/cell_pattern.hpp"
+#include "emergent/kit/cell_pattern.hpp"
 
 using namespace emergent;
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "emergent/couette_stability.hpp"
+#include "emergent/kit/couette_stability.hpp"
 
 using namespace emergent;
 

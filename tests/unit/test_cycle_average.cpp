@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "emergent/block_error.hpp"
-#include "emergent/cycle_average.hpp"
+#include "emergent/kit/cycle_average.hpp"
 
 using namespace emergent;
 

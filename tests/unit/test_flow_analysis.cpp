@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "emergent/flow_analysis.hpp"
+#include "emergent/kit/flow_analysis.hpp"
 #include "emergent/random.hpp"
 
 using namespace emergent;

@@ -10,7 +10,7 @@
 
 #include "emergent/execution.hpp"
 #include "emergent/gpu.hpp"
-#include "execution/particle_mirror.hpp"
+#include "particles/particle_mirror.hpp"
 #include "integrate/kick_drift.hpp"
 
 using namespace emergent;

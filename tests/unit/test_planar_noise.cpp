@@ -8,7 +8,7 @@
 #include <complex>
 #include <vector>
 
-#include "emergent/planar_noise.hpp"
+#include "emergent/kit/planar_noise.hpp"
 
 using namespace emergent;
 

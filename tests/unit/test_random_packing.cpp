@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "emergent/error.hpp"
-#include "emergent/lattice.hpp"
+#include "emergent/kit/lattice.hpp"
 
 using namespace emergent;
 

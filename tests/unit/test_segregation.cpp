@@ -7,7 +7,7 @@
 #include <cmath>
 #include <random>
 
-#include "emergent/segregation.hpp"
+#include "emergent/kit/segregation.hpp"
 
 using namespace emergent;
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "emergent/capsomer.hpp"
+#include "emergent/kit/capsomer.hpp"
 #include "force/site_attraction.hpp"
 
 namespace emergent {

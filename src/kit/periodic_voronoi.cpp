@@ -13,7 +13,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "emergent/cell_pattern.hpp"
+#include "emergent/kit/cell_pattern.hpp"
 
 namespace emergent {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The PW capsomer, constructed from the icosahedron (see emergent/capsomer.hpp).
-#include "emergent/capsomer.hpp"
+// The PW capsomer, constructed from the icosahedron (see emergent/kit/capsomer.hpp).
+#include "emergent/kit/capsomer.hpp"
 
 #include <algorithm>
 #include <array>

@@ -11,7 +11,7 @@
 // Re^2 mu(sigma) = 1 (found by bisection) and the marginal Reynolds number is mu(0)^(-1/2).
 // mu comes from power iteration: M is smoothing (an inverse of a fourth-order operator), its
 // leading eigenvalue is well separated, and this needs no general eigenvalue solver.
-#include "emergent/couette_stability.hpp"
+#include "emergent/kit/couette_stability.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 #include <cmath>
 #include <complex>
 
-#include "emergent/cell_pattern.hpp"
-#include "observe/fftw_array.hpp"
+#include "emergent/kit/cell_pattern.hpp"
+#include "kit/fftw_array.hpp"
 
 namespace emergent {
 

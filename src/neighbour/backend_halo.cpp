@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Ghost positions refreshed on the back end.
-#include "execution/backend_halo.hpp"
+#include "neighbour/backend_halo.hpp"
 
 #include <mpi.h>
 #if __has_include(<mpi-ext.h>)

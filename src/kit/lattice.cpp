@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Lattice filling.
-#include "emergent/lattice.hpp"
+#include "emergent/kit/lattice.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: MIT
 // Segregation measures of a two-species mixture.
-#include "emergent/segregation.hpp"
+#include "emergent/kit/segregation.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "emergent/error.hpp"
-#include "emergent/flow_analysis.hpp"
+#include "emergent/kit/flow_analysis.hpp"
 
 namespace emergent {
 

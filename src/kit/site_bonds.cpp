@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Bonds and clusters of bodies from their attraction sites.
-#include "emergent/site_bonds.hpp"
+#include "emergent/kit/site_bonds.hpp"
 
 #include <mpi.h>
 

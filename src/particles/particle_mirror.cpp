@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The particle arrays in a back end's memory; the checking host memory.
-#include "execution/particle_mirror.hpp"
+#include "particles/particle_mirror.hpp"
 
 #include <algorithm>
 #include <cstdlib>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: MIT
-#include "emergent/planar_noise.hpp"
+#include "emergent/kit/planar_noise.hpp"
 
 #include <mpi.h>
 

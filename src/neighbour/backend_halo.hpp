@@ -11,7 +11,7 @@
 
 #include "decomposition/halo_exchange.hpp"
 #include "emergent/execution.hpp"
-#include "execution/particle_mirror.hpp"
+#include "particles/particle_mirror.hpp"
 
 namespace emergent::exec {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Roll census and dominant modes of flow profiles.
-#include "emergent/flow_analysis.hpp"
+#include "emergent/kit/flow_analysis.hpp"
 
 #include <fftw3.h>
 
