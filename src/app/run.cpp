@@ -3,6 +3,7 @@
 #include "app/run.hpp"
 
 
+#include <algorithm>
 #include <chrono>
 #include <cinttypes>
 #include <cstdio>
@@ -309,6 +310,16 @@ std::string run_problem(const RunRequest& req, MPI_Comm comm) {
             sim.restore_exchange_tallies(req.restart->exchange_tallies);
         problem->restore_state(req.restart->scene_state);
         series = req.restart->series;
+        // A run that ended off the sampling grid sampled its last step, which the run continued
+        // here would not have sampled: that row goes, so the rows and averages are the
+        // uninterrupted run's.
+        const long long every = cfg.integer("sample_every"), n_eq = cfg.integer("equilibration_steps"),
+                        end = n_eq + cfg.integer("steps");
+        series.erase(std::remove_if(series.begin(), series.end(),
+                                    [&](const ThermoSample& t) {
+                                        return t.step % every != 0 && t.step != n_eq && t.step != end;
+                                    }),
+                     series.end());
     } else {
         problem->place_particles(sim);
         // Bodies place their spheres only at initialise(): count the bodies meanwhile.
