@@ -3,11 +3,14 @@
 # the criteria): one command, one log per run, a verdict per scene printed last.
 #
 # usage: benchmarks/phenomena.sh [SCENE...] [--seed S] [--preset P] [--ranks R] [--out DIR]
-#                                [--set KEY=VALUE ...]
+#                                [--set KEY=VALUE ...] [--checkpoint-every N] [--continue]
 #   SCENE: taylor-couette, rayleigh-benard, rotating-drum, vibrated-sawtooth, capsid-assembly
 #   (default: all five; capsid-assembly runs start=shell: the closed side of its hysteresis)
 #   --preset: default small (the preset that shows the phenomenon on a 2-core machine)
 #   --ranks: MPI ranks per run (default 2); --out: default /tmp/emergent_phenomena
+#   --checkpoint-every N: a long run keeps its latest checkpoint (the engine deletes it at the end);
+#   --continue: a run that stopped (session end, SIGTERM) goes on from OUT/SCENE/checkpoint.h5,
+#   its run.log extended, instead of being refused
 #   --seed, --set: passed to the scene (a control run sets what must make the check fail, e.g.
 #   --set omega=0 for the drum)
 # Each run goes to OUT/SCENE_seedS (OUT/SCENE without --seed): the run's own output, run.log
@@ -16,7 +19,7 @@
 # Exit: 0 every phenomenon shown, 1 some check failed, 2 a run or the input failed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-scenes=() seed="" preset=small ranks=2 out=/tmp/emergent_phenomena sets=()
+scenes=() seed="" preset=small ranks=2 out=/tmp/emergent_phenomena sets=() every=() resume=0
 known="taylor-couette rayleigh-benard rotating-drum vibrated-sawtooth capsid-assembly"
 while [ $# -gt 0 ]; do
   case $1 in
@@ -24,6 +27,8 @@ while [ $# -gt 0 ]; do
     --preset) preset=${2:?--preset needs a value}; shift 2 ;;
     --ranks) ranks=${2:?--ranks needs a value}; shift 2 ;;
     --out) out=${2:?--out needs a value}; shift 2 ;;
+    --checkpoint-every) every=(--checkpoint-every "${2:?--checkpoint-every needs a value}"); shift 2 ;;
+    --continue) resume=1; shift ;;
     --set) sets+=(--set "${2:?--set needs KEY=VALUE}"); shift 2 ;;
     -*) echo "phenomena.sh: unknown option $1" >&2; exit 2 ;;
     *) case " $known " in
@@ -43,21 +48,28 @@ status=0
 verdicts=()
 for scene in "${scenes[@]}"; do
   dir=$out/$scene${seed:+_seed$seed}
-  # An earlier run there (and its logs) stays: the engine would refuse it anyway.
-  if compgen -G "$dir/trajectory*.h5" >/dev/null || [ -e "$dir/summary.json" ]; then
-    verdicts+=("ERROR: $scene: $dir holds an earlier run; choose another --out")
+  # An earlier run there (and its logs) stays: the engine would refuse it anyway. With --continue
+  # a run that left a checkpoint and no summary goes on from it.
+  args=()
+  if [ $resume -eq 1 ] && [ -e "$dir/checkpoint.h5" ] && [ ! -e "$dir/summary.json" ]; then
+    args=(run --restart "$dir/checkpoint.h5" -o "$dir")
+    echo "# continued: mpirun -np $ranks emergent ${args[*]}; $(date -u +%FT%TZ)" >>"$dir/run.log"
+  elif compgen -G "$dir/trajectory*.h5" >/dev/null || [ -e "$dir/summary.json" ]; then
+    verdicts+=("ERROR: $scene: $dir holds an earlier run; choose another --out (or --continue a stopped one)")
     status=2
     continue
+  else
+    mkdir -p "$dir" || exit 2
+    # The capsid check judges a closed shell (the small preset starts from the open cluster).
+    scene_sets=()
+    [ "$scene" = capsid-assembly ] && scene_sets=(--set start=shell)
+    args=(run "$scene" --preset "$preset" "${scene_sets[@]}" ${seed:+--set seed=$seed} "${sets[@]}"
+          "${every[@]}" -o "$dir")
+    {
+      echo "# command: mpirun -np $ranks emergent ${args[*]}"
+      echo "# machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1); $(date -u +%FT%TZ)"
+    } >"$dir/run.log"
   fi
-  mkdir -p "$dir" || exit 2
-  # The capsid check judges a closed shell (the small preset starts from the open cluster).
-  scene_sets=()
-  [ "$scene" = capsid-assembly ] && scene_sets=(--set start=shell)
-  args=(run "$scene" --preset "$preset" "${scene_sets[@]}" ${seed:+--set seed=$seed} "${sets[@]}" -o "$dir")
-  {
-    echo "# command: mpirun -np $ranks emergent ${args[*]}"
-    echo "# machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p' | head -n 1); $(date -u +%FT%TZ)"
-  } >"$dir/run.log"
   start=$(date +%s)
   mpirun -q --oversubscribe -np "$ranks" "$exe" "${args[@]}" >>"$dir/run.log" 2>&1
   rc=$?
