@@ -7,6 +7,12 @@
 #include "emergent/plugin.hpp"
 #include "emergent/random.hpp"
 
+// tests/CMakeLists.txt builds this file three times under different names; built by hand as
+// docs/plugins.md shows, it is the scene "demo-gas".
+#ifndef PLUGIN_SCENE_NAME
+#define PLUGIN_SCENE_NAME "demo-gas"
+#endif
+
 namespace {
 
 class DemoGas final : public emergent::Problem {
