@@ -10,7 +10,7 @@
 #       until SIGUSR1/SIGTERM (a checkpoint
 #       at the next step, exit status 5), so `kill -USR1` ends a session's share cleanly.
 #       CAPSOMERS (300), PARTICLE_FRACTION (Table 1's 0.033), SOLVENT (implicit), DT (the scene's 0.005; the implicit solvent holds
-#       to 0.02, benchmarks/RESULTS.md "A longer step in the implicit solvent"), SAMPLE (100 tau),
+#       to 0.02, benchmarks/results/capsid.md "A longer step in the implicit solvent"), SAMPLE (100 tau),
 #       EVENTS (0.25 tau), CHECKPOINT (1000 tau) and FRAMES (5000 tau: between trajectory frames,
 #       whose cluster ids scripts/capsid_cages fits) override, the last four in steps; SET="key=value
 #       ..." adds scene settings (e.g. the site rows: SET="site_depth_outer=0"). DT on a

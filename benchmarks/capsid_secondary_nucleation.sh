@@ -9,7 +9,7 @@
 # (scripts/capsid_contacts).
 # usage: benchmarks/capsid_secondary_nucleation.sh OUT [SEEDS...]   (default seeds 31 32 33 34)
 #   E (0.115), PATCH (20 members), TAU (8000 per run), DT (0.02, with skin 1.4: the faster step of
-#   the implicit solvent, benchmarks/RESULTS.md "A longer step in the implicit solvent"),
+#   the implicit solvent, benchmarks/results/capsid.md "A longer step in the implicit solvent"),
 #   FRAMES (250 steps = 5 tau), CAPSOMERS (300), PARTICLE_FRACTION (0.033) override; SET="key=value
 #   ..." adds scene settings after the rows' (e.g. SET="site_depth_outer=0.25"). Runs already
 #   complete in OUT are kept, stopped ones continued from their checkpoints; the table goes to

@@ -6,7 +6,7 @@
 # than 20 x 20, 40 x 40 and 80 x 80, which agree - the wall layers then hold only ~20 atoms.) Each run starts from the conduction profile, settles 150 tau, then the heat
 # flux is averaged over 150 tau (the columns: 750 tau) in 30 frames (mean_heat_flux: mean and
 # block standard error).
-#   1. Below onset (height 20, g scale 1: no convection, benchmarks/RESULTS.md): the wide layer
+#   1. Below onset (height 20, g scale 1: no convection, benchmarks/results/rayleigh_benard.md): the wide layer
 #      (80 x 80) against its column (20 x 20): Nusselt = ratio, expected 1.
 #   2. The `small` preset's layer (height 40, g scale 0.83) in a 40 x 40 column: the conduction
 #      flux its Nusselt number is measured against (the preset's conduction_flux).

@@ -7,7 +7,7 @@
 # second estimate needs no saturation: the growth rate of the rolls while small (against linear
 # theory's for the same mode at the run's Re), which is linear in Re near onset, and where a
 # line through it crosses zero. Re = omega r_i d / nu with the
-# nu measured by planar-couette at the omega = 0.1 run's mid-gap state (1.156, RESULTS.md); the
+# nu measured by planar-couette at the omega = 0.1 run's mid-gap state (1.156, benchmarks/results/viscosity.md); the
 # fluid's state, hence nu, shifts with omega (viscous heating), which this estimate ignores.
 # Runs already complete in OUT_DIR are reused. Writes a table and OUT_DIR/onset.png.
 # usage: benchmarks/taylor_couette_onset.sh [OUT_DIR] [OMEGAS] [STEPS] [RANKS]

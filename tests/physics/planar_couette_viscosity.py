@@ -23,7 +23,7 @@ Tolerance: |eta - ETA_REF| <= 3 sqrt(se^2 + ETA_REF_SE^2) + SYSTEMATIC * ETA_REF
       the state: the run must reach rho_c within 0.004 and T_c within 0.03 of the reference state
         (checked below; else the test fails as "state moved"), over which eta moves by at most
         1.3 % and 0.9 % (d ln eta / d rho = 3.2, d ln eta / d ln T = 0.37, fitted to the six
-        state points of the viscosity table in benchmarks/RESULTS.md);
+        state points of the viscosity table in benchmarks/results/viscosity.md);
       the gradients across the middle half the shear rate is fitted in (T 1.23 - 1.29, rho
         0.461 - 0.470, opposite ways): the fit weighs eta(z) over them, below 1 %;
       the shear rate (0.146 / tau) against Green-Kubo's zero rate: stresses relax within ~0.5 tau

@@ -8,7 +8,7 @@
 #   the sawtooth drives one: |F| > 5 standard errors.
 # Standard errors come from blocks of 16 cycles (CycleAverage: at least 16 blocks), longer than
 # the flux's correlation time there (the cycle means decorrelate within about 2 cycles: a 2000-
-# cycle run's blocking plateau starts at 4-cycle blocks; benchmarks/RESULTS.md).
+# cycle run's blocking plateau starts at 4-cycle blocks; benchmarks/results/vibrated_sawtooth.md).
 # usage: vibrated_sawtooth_symmetry.sh EMERGENT
 set -euo pipefail
 exe=$1
