@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Runs a command that must fail: the documented exit code, exactly one line on stderr, matching
-# a pattern. Exit codes (README, "Exit codes"): 2 bad input (the default here), 3 run-time fault,
+# a pattern. Exit codes (docs/running.md, "Exit codes"): 2 bad input (the default here), 3 run-time fault,
 # 4 I/O failure.
 # usage: expect_error.sh [--code N] PATTERN COMMAND [ARGS...]
 set -u

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# What -o DIR does with a directory that holds an earlier run (README, "Output directory"):
+# What -o DIR does with a directory that holds an earlier run (docs/running.md, "Output directory"):
 # refused, nothing touched; --overwrite removes the earlier run's files (only those) before the
 # new run writes; --restart continues beside them, replacing nothing whole; a failed run never
 # leaves two runs mixed.

@@ -18,7 +18,7 @@ cp "$dir/run/checkpoint.h5" "$dir/saved.h5"
 "$expect" "n_cells is structural" "$exe" run --restart "$dir/run/checkpoint.h5" --set n_cells=5
 "$expect" "would end at step 210 \(equilibration_steps \+ steps\), before the checkpoint's step 400" \
   "$exe" run --restart "$dir/run/checkpoint.h5" --set steps=10
-# The README's example: no -o, output goes beside the checkpoint; the changes are echoed.
+# The example in docs/running.md: no -o, output goes beside the checkpoint; the changes are echoed.
 out=$("$exe" run --restart "$dir/run/checkpoint.h5" --set steps=400 --set dt=0.004 --set progress_interval=0)
 grep -q "^emergent: continuing with changed parameters: dt 0.005 -> 0.004, steps 200 -> 400$" <<<"$out" \
   || { echo "FAIL: changes not echoed: $out"; exit 1; }

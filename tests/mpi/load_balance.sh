@@ -34,7 +34,7 @@ drum=(rotating-drum --preset tiny --set steps=500 --set balance=cost --set balan
 capsid=(capsid-assembly --preset tiny --set attraction=0.09 --set steps=600 --set balance=cost --set balance.every=70
         --set progress_interval=0)
 # Scenes with rigid bodies: bodies and their spheres move to new owners at every rebalance.
-# (Their continuations are not bitwise: README, "Checkpoints and restarts".)
+# (Their continuations are not bitwise: docs/running.md, "Checkpoints and restarts".)
 for scene in drum capsid; do
     declare -n args=$scene
     for np in 1 2 4; do
