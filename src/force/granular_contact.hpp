@@ -36,6 +36,7 @@ EMERGENT_HD inline Vec3 contact_force(const Vec3& n, Real overlap, const Vec3& v
 constexpr int kContactTableSpecies = 4;
 struct ContactTable {
     GranularPair pair[kContactTableSpecies * kContactTableSpecies];
+    EMERGENT_HD const GranularPair& operator[](int k) const { return pair[k]; }
 };
 
 /// Force on a sphere from a flat wall normal to `axis` (the sphere on the side `side`, +1 or

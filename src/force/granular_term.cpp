@@ -10,7 +10,7 @@
 #include "force/dispatch.hpp"
 #include "force/per_particle_term.hpp"
 #include "force/granular_contact.hpp"
-#include "force/granular_full_list.hpp"
+#include "force/contact_law.hpp"
 #include "force/uniform_field.hpp"
 #include "neighbour/neighbour_list.hpp"
 
@@ -18,52 +18,7 @@ namespace emergent {
 
 namespace {
 
-/// Half-list loop over contacts; one instantiation per feature combination.
-template <class F>
-void contact_loop(ParticleStore& s, const NeighbourList& list, const GranularSettings& g,
-                  ForceSums& sums, const ForceContext& rows) {
-    const std::size_t n_owned = list.n_owned();
-    const std::size_t last = std::min(rows.last, n_owned);
-    const Vec3 *x = s.position.data(), *v = s.velocity.data();
-    const Real* d = s.diameter.data();
-    const int* sp = s.species.data();
-    Vec3* f = s.force.data();
-    const std::uint32_t *offset = list.offsets(), *nb = list.neighbours();
-    const GranularPair* table = g.pairs.data();
-    const int n_species = g.n_species;
-    const Real half_range = 0.5 * g.range_factor;
-    double potential = 0, virial = 0, worst = 0;
-    for (std::size_t i = rows.first; i < last; ++i) {
-        const Vec3 xi = x[i], vi = v[i];
-        const Real di = d[i];
-        Vec3 fi{0, 0, 0};
-        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
-            const std::uint32_t j = nb[k];
-            const Vec3 r = xi - x[j];
-            const Real r2 = dot(r, r), rc = half_range * (di + d[j]);
-            if (r2 >= rc * rc) continue;
-            const Real dist = std::sqrt(r2);
-            const GranularPair& p =
-                F::species_table ? table[sp[i] * n_species + sp[j]] : table[0];
-            const Vec3 fij = force::contact_force<F::damping, F::friction>(
-                (1 / dist) * r, rc - dist, vi - v[j], p);
-            fi += fij;
-            f[j] -= fij;
-            if constexpr (F::sample) {
-                worst = std::max(worst, (rc - dist) / (0.5 * (di + d[j])));
-                const Real w = j < n_owned ? 1.0 : 0.5;
-                potential += w * 0.5 * p.k_n * (rc - dist) * (rc - dist);
-                virial += w * dot(r, fij);
-            }
-        }
-        f[i] += fi;
-    }
-    sums.potential += potential;
-    sums.virial += virial;
-    if constexpr (F::sample) sums.max_overlap = std::max(sums.max_overlap, worst);
-}
-
-/// Runs the contact loop instantiated for the features chosen by dispatch_bools.
+/// Contacts over the half list (host code) for the features chosen by dispatch_bools.
 struct ContactLoop {
     ParticleStore& store;
     const NeighbourList& list;
@@ -72,8 +27,16 @@ struct ContactLoop {
     const ForceContext& rows;
     template <bool Sample, bool Damping, bool Friction, bool Table>
     void operator()() const {
-        contact_loop<force::ContactFeatures<Sample, Damping, Friction, Table>>(store, list,
-                                                                                settings, sums, rows);
+        using Law = force::ContactLaw<force::ContactFeatures<Sample, Damping, Friction, Table>,
+                                      force::HostContactPairs>;
+        const Law law{{settings.pairs.data()}, settings.n_species, 0.5 * settings.range_factor};
+        const force::PairArrays a{store.position.data(), store.velocity.data(), store.diameter.data(),
+                                  store.species.data(),  store.force.data(),    list.offsets(),
+                                  list.neighbours()};
+        const force::PairSums s = force::pair_forces_half_list<Sample>(law, a, list.n_owned(), rows.first, rows.last);
+        sums.potential += s.energy;
+        sums.virial += s.virial;
+        if constexpr (Sample) sums.max_overlap = std::max(sums.max_overlap, s.overlap);
     }
 };
 
@@ -85,10 +48,10 @@ struct FullListContacts {
     ForceSums& sums;
     template <bool Sample, bool Damping, bool Friction, bool Table>
     void operator()() const {
-        using Features = force::ContactFeatures<Sample, Damping, Friction, Table>;
-        const force::ContactForceFullList<Features> contacts{
-            p.position, p.velocity, p.diameter, p.species, p.force, p.list_offset, p.list_index,
-            table, settings.n_species, 0.5 * settings.range_factor, p.energy, p.virial, p.overlap};
+        using Law = force::ContactLaw<force::ContactFeatures<Sample, Damping, Friction, Table>, force::ContactTable>;
+        const force::PairArrays a{p.position, p.velocity, p.diameter, p.species, p.force, p.list_offset, p.list_index};
+        const force::PairForcesFullList<Law, Sample> contacts{
+            Law{table, settings.n_species, 0.5 * settings.range_factor}, a, p.energy, p.virial, p.overlap};
         exec::for_each(p.target, p.n_owned, contacts);
         if constexpr (Sample) force::add_sampled(p, p.n_owned, true, sums);
     }

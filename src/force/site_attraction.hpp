@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Soft spheres with attraction sites (the capsid model): the pair law and its loops, written
-// once for the host's half list and the back end's full list.
+// Soft spheres with attraction sites (the capsid model): the pair law, a law of the neighbour
+// loop (neighbour_loop.hpp) on the host's half list and the back end's full list alike.
 #pragma once
 
 #include <cstddef>
@@ -8,6 +8,7 @@
 
 #include "emergent/force_term.hpp"
 #include "emergent/vec3.hpp"
+#include "force/neighbour_loop.hpp"
 
 namespace emergent::force {
 
@@ -56,72 +57,24 @@ struct SphereSiteLaw {
         const int k = kind(si, sj);
         return k == kNone ? Real(0) : force_over_r(k, dot(d, d), energy);
     }
+
+    // As a law of the neighbour loop: every listed pair, with zero force where they do not
+    // meet (as between()).
+    static constexpr unsigned needs = kNeedsSpecies;
+    template <class List, bool Sample>
+    EMERGENT_HD bool pair(const PairMember& i, const PairMember& j, const Vec3& d, PairTerm& t) const {
+        Real u = 0;
+        const Real fr = between(i.species, j.species, d, Sample ? &u : nullptr);
+        t.f = fr * d;
+        if constexpr (Sample) {
+            t.energy = u;
+            t.virial = fr * dot(d, d);
+        }
+        return true;
+    }
 };
 
 /// The law of settings already checked (make_soft_spheres_and_sites checks them).
 SphereSiteLaw sphere_site_law(const SiteAttraction& s);
-
-/// Forces, and with Sample energy and virial, over a half list (host): each pair once, Newton's
-/// third law on both members; a pair with a ghost counts half its energy and virial.
-template <bool Sample>
-void sphere_site_half_list(const SphereSiteLaw& law, std::size_t n_owned, const Vec3* x, const int* sp,
-                           Vec3* f, const std::uint32_t* offset, const std::uint32_t* nb,
-                           double& potential, double& virial) {
-    for (std::size_t i = 0; i < n_owned; ++i) {
-        const Vec3 xi = x[i];
-        const int si = sp[i];
-        Vec3 fi{0, 0, 0};
-        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
-            const std::uint32_t j = nb[k];
-            const Vec3 d = xi - x[j];
-            Real u = 0;
-            const Real fr = law.between(si, sp[j], d, Sample ? &u : nullptr);
-            fi += fr * d;
-            f[j] -= fr * d;
-            if constexpr (Sample) {
-                const Real weight = j < n_owned ? 1.0 : 0.5;
-                potential += weight * u;
-                virial += weight * fr * dot(d, d);
-            }
-        }
-        f[i] += fi;
-    }
-}
-
-/// The same over a full list as a per-particle functor: f[i] += the sum over i's neighbours;
-/// with Sample, energy[i] and virial[i] get half of each of its pairs.
-template <bool Sample>
-struct SphereSiteFullList {
-    SphereSiteLaw law;
-    const Vec3* x;
-    const int* sp;
-    Vec3* f;
-    const std::uint32_t* offset;
-    const std::uint32_t* index;
-    Real* energy = nullptr;
-    Real* virial = nullptr;
-
-    EMERGENT_HD void operator()(std::size_t i) const {
-        const Vec3 xi = x[i];
-        const int si = sp[i];
-        Vec3 fi{0, 0, 0};
-        Real u_sum = 0, w_sum = 0;
-        for (std::uint32_t k = offset[i]; k < offset[i + 1]; ++k) {
-            const Vec3 d = xi - x[index[k]];
-            Real u = 0;
-            const Real fr = law.between(si, sp[index[k]], d, Sample ? &u : nullptr);
-            fi += fr * d;
-            if constexpr (Sample) {
-                u_sum += u;
-                w_sum += fr * dot(d, d);
-            }
-        }
-        f[i] += fi;
-        if constexpr (Sample) {
-            energy[i] = Real(0.5) * u_sum;
-            virial[i] = Real(0.5) * w_sum;
-        }
-    }
-};
 
 }  // namespace emergent::force

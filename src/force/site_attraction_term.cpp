@@ -38,33 +38,27 @@ public:
         return r;
     }
 
-    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext&, bool sample,
+    void add_forces(ParticleStore& s, const NeighbourList& list, const ForceContext& rows, bool sample,
                     ForceSums& sums) const override {
-        double potential = 0, virial = 0;
-        if (sample)
-            force::sphere_site_half_list<true>(law_, list.n_owned(), s.position.data(), s.species.data(),
-                                               s.force.data(), list.offsets(), list.neighbours(),
-                                               potential, virial);
-        else
-            force::sphere_site_half_list<false>(law_, list.n_owned(), s.position.data(), s.species.data(),
-                                                s.force.data(), list.offsets(), list.neighbours(),
-                                                potential, virial);
-        sums.potential += potential;
-        sums.virial += virial;
+        const force::PairArrays a{s.position.data(), nullptr, nullptr, s.species.data(), s.force.data(),
+                                  list.offsets(), list.neighbours()};
+        const force::PairSums sum =
+            sample ? force::pair_forces_half_list<true>(law_, a, list.n_owned(), rows.first, rows.last)
+                   : force::pair_forces_half_list<false>(law_, a, list.n_owned(), rows.first, rows.last);
+        sums.potential += sum.energy;
+        sums.virial += sum.virial;
     }
 
     bool on_backend() const override { return true; }
     void add_forces_on_backend(const BackendParticles& p, const ForceContext&, bool sample,
                                ForceSums& sums) const override {
+        const force::PairArrays a{p.position, nullptr, nullptr, p.species, p.force, p.list_offset, p.list_index};
         if (!sample) {
-            exec::for_each(p.target, p.n_owned,
-                           force::SphereSiteFullList<false>{law_, p.position, p.species, p.force,
-                                                            p.list_offset, p.list_index});
+            exec::for_each(p.target, p.n_owned, force::PairForcesFullList<force::SphereSiteLaw, false>{law_, a});
             return;
         }
         exec::for_each(p.target, p.n_owned,
-                       force::SphereSiteFullList<true>{law_, p.position, p.species, p.force, p.list_offset,
-                                                       p.list_index, p.energy, p.virial});
+                       force::PairForcesFullList<force::SphereSiteLaw, true>{law_, a, p.energy, p.virial});
         sums.potential += exec::transform_sum<double>(p.target, p.n_owned, exec::ElementOf<Real>{p.energy});
         sums.virial += exec::transform_sum<double>(p.target, p.n_owned, exec::ElementOf<Real>{p.virial});
     }

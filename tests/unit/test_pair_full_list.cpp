@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
-// The per-particle full-list pair functor (the GPU kernel's body) gives the same forces as the
-// CPU half-list loop, run here through the host back end of the execution layer.
+// The neighbour loop's two forms give the same forces: its per-particle full-list functor (the
+// GPU kernel's body), run here through the host back end of the execution layer, and its
+// half-list loop (host code).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,8 +10,7 @@
 #include "decomposition/rank_grid.hpp"
 #include "emergent/execution.hpp"
 #include "force/lennard_jones.hpp"
-#include "force/pair_full_list.hpp"
-#include "force/pair_loop.hpp"
+#include "force/radial_pair_law.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "support/random_points.hpp"
@@ -37,8 +37,10 @@ TEST(PairFullList, SameForcesAsTheHalfListLoop) {
 
     list.build(store, cells);
     std::fill(store.force.begin(), store.force.end(), Vec3{0, 0, 0});
-    ForceSums sums;
-    force::pair_forces_half_list<force::PairFeatures<false>>(store, list, lj, sums, ForceContext{});
+    const force::RadialPairLaw<force::LennardJones> law{lj};
+    const force::PairArrays half_arrays{store.position.data(), nullptr, nullptr, nullptr, store.force.data(),
+                                        list.offsets(), list.neighbours()};
+    force::pair_forces_half_list<false>(law, half_arrays, list.n_owned(), 0, list.n_owned());
     const std::vector<Vec3> half(store.force.begin(), store.force.begin() + store.n_owned());
 
     NeighbourList full(2.5, 0.3);
@@ -64,8 +66,9 @@ TEST(PairFullList, SameForcesAsTheHalfListLoop) {
     EXPECT_LE(beyond, 1e-3 * in_range);  // the widening is ~1e-6 of the range
     std::vector<Vec3> f(store.size(), Vec3{0, 0, 0});
     exec::for_each(exec::Host{}, store.n_owned(),
-                   force::PairForceFullList<force::LennardJones>{
-                       store.position.data(), f.data(), {full.offsets(), full.neighbours()}, lj});
+                   force::PairForcesFullList<force::RadialPairLaw<force::LennardJones>, false>{
+                       law, {store.position.data(), nullptr, nullptr, nullptr, f.data(), full.offsets(),
+                             full.neighbours()}});
     double worst = 0, scale = 0;
     for (std::size_t i = 0; i < store.n_owned(); ++i) {
         const Vec3 d = f[i] - half[i];
