@@ -31,7 +31,7 @@ public:
     explicit IoError(const std::string& what) : std::runtime_error(what) {}
 };
 
-/// Exit codes of the `emergent` command (documented in README.md, "Exit codes").
+/// Exit codes of the `emergent` command (documented in docs/running.md, "Exit codes").
 namespace exit_code {
 inline constexpr int ok = 0;
 inline constexpr int bad_input = 2;

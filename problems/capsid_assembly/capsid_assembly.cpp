@@ -525,7 +525,7 @@ ProblemInfo capsid_assembly_info() {
     info.schema = run_schema();
     // Skin 0.7 on cells of half the list range: with the list by species (the solvent's pairs
     // within the WCA range, the sites' within 3), 2.0x the engine's 0.3 and whole cells in the
-    // explicit solvent and 1.6x in the implicit one (benchmarks/RESULTS.md, "Ranges by species").
+    // explicit solvent and 1.6x in the implicit one (benchmarks/results/capsid.md, "Ranges by species").
     info.schema.set_default("dt", "0.005").set_default("equilibration_steps", "0")
         .set_default("skin", "0.7").set_default("cell_subdivisions", "2");
     info.schema.integer("capsomers", 4752, 1, 1e8, "1", "number of capsomers N_p")
@@ -539,7 +539,7 @@ ProblemInfo capsid_assembly_info() {
               "pw: the short edge a; ph: the long edge; 0: the shape's own (2.1, 3.6); refused "
               "where spheres of neighbours in the shell would overlap (below ~1.9 for either)")
         // 0.25, not the note's 0.5: with the note's rows the capsomers close into cages of 24
-        // and no shell grows from monomers; at 0.25 shells do (benchmarks/RESULTS.md, "Table 1
+        // and no shell grows from monomers; at 0.25 shells do (benchmarks/results/capsid.md, "Table 1
         // with the outer row 0.25 deep"), and at 0 hinges about the outer row glue clusters
         // together ("The outer row's depth sets the hinges").
         .real("site_depth_outer", 0.25, 0, 1.7, "sigma",

@@ -296,7 +296,7 @@ ProblemInfo rayleigh_benard_info() {
               "for a cell, to measure it)");
     // Skin 0.8: the hot wall's fastest atoms (T = 8) cross skin/2 = 0.15 in ~3 steps, so at
     // the engine's 0.3 lists are rebuilt every 3 steps; 0.7-0.9 is 1.4x faster (skin sweep in
-    // benchmarks/RESULTS.md).
+    // benchmarks/results/rayleigh_benard.md).
     info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10")
         .set_default("skin", "0.8");
     // The slice, profile and cell-record sizes shape the recorded series: structural. The walls'
@@ -315,7 +315,7 @@ ProblemInfo rayleigh_benard_info() {
     // critical wavelengths (2 x height) across. On 2 cores (2.8-3.5 s per tau) the Nusselt
     // number passes 1.05 after 625-900 tau (29-52 min) in three seeds and levels off at 1.11
     // with four or five cells of inradius ~1.05-1.08 height. Measured neighbours, height 45 and
-    // g scale 1.1, grew their cells no sooner in tau (benchmarks/RESULTS.md).
+    // g scale 1.1, grew their cells no sooner in tau (benchmarks/results/rayleigh_benard.md).
     info.presets["small"] = {{"width_x", "160"}, {"width_y", "160"}, {"height", "40"},
                              {"gravity_scale", "0.83"}, {"equilibration_steps", "0"},
                              // Its 40 x 40 column (no room for a cell): 0.5105 +- 0.0027,

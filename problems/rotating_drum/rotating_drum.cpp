@@ -88,7 +88,7 @@ public:
         // follow the bed, and where slices of the axis alone would be thinner than about two
         // ghost shells (4 body sizes), x is split too (across the bed, the tilted surface's
         // left from its right; measured slower than axial slices where those suffice,
-        // benchmarks/RESULTS.md). Never y as well: planes shared by a whole axis cannot cut a
+        // benchmarks/results/scaling.md). Never y as well: planes shared by a whole axis cannot cut a
         // tilted bed into four equal quadrants.
         int ranks = 1;
         MPI_Comm_size(sim.comm(), &ranks);
@@ -274,7 +274,7 @@ ProblemInfo rotating_drum_info() {
     info.description = "tetrahedra in a rotating rough cylinder: radial and axial size segregation";
     info.schema = run_schema();
     // The whole bed turns, so lists age fast: a skin of 0.7 rebuilds them about a third as
-    // often as 0.3 and runs ~25 % faster (benchmarks/RESULTS.md, rotating-drum).
+    // often as 0.3 and runs ~25 % faster (benchmarks/results/rotating_drum.md, rotating-drum).
     info.schema.set_default("dt", "0.005").set_default("equilibration_steps", "0")
         .set_default("skin", "0.7");
     info.schema.real("diameter", 100, 4, 1e5, "sigma", "drum diameter D (wall spheres' centres)", true)

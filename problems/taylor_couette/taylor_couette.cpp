@@ -30,7 +30,7 @@ public:
         const double eta = r_i_ / r_o_, d = r_o_ - r_i_;
         reynolds_ = omega_ * r_i_ * d / nu;
         // A slower start (stepped or ramped): the vortex count a run ends with depends on how
-        // it reached its Re (benchmarks/RESULTS.md, "How many vortices").
+        // it reached its Re (benchmarks/results/taylor_couette.md, "How many vortices").
         spin_.omega = omega_;
         spin_.start_until = c.real("spin_up_time");
         spin_.ramp = c.real("spin_up_ramp");
@@ -290,7 +290,7 @@ ProblemInfo taylor_couette_info() {
         .real("kinematic_viscosity", 1.156, 0, 1e6, "sigma^2/tau",
               "nu of the fluid at the run's state, for Re and Ta; 1.156 +- 0.026 is what "
               "planar-couette measures at the small preset's mid-gap state (rho 0.444, T 2.1, "
-              "benchmarks/RESULTS.md); measure it anew for other states", true)
+              "benchmarks/results/taylor_couette.md); measure it anew for other states", true)
         .real("critical_reynolds", 0, 0, 1e6, "1",
               "Re_c for the radius ratio (0: from linear stability, computed for the run's "
               "radius ratio)")
@@ -301,7 +301,7 @@ ProblemInfo taylor_couette_info() {
               "first frame; later frames measure the noise from the change since the last one",
               true);
     // Skin 0.7: atoms near the inner wall (speed 5) age the list fast; 0.7 is 1.36x faster
-    // than the engine's 0.3 in the small system (skin sweep in benchmarks/RESULTS.md).
+    // than the engine's 0.3 in the small system (skin sweep in benchmarks/results/taylor_couette.md).
     info.schema.set_default("fields.interval", "2000").set_default("fields.sample_every", "10")
         .set_default("skin", "0.7");
     // The inner cylinder's speed (smooth thermal wall) may change between segments; the
@@ -320,7 +320,7 @@ ProblemInfo taylor_couette_info() {
     // one 1.9 : 1.0) until those rolls saturate, then stepped to 0.1 for 350 tau (their
     // amplitude there saturates within ~250 tau). Started at 0.1 at once, 5 vortices (1.6 d,
     // the fastest-growing mode at Re 108) formed in 4 of 6 seeds; stepped, 4 in every seed
-    // run (benchmarks/RESULTS.md, "A stepped start"). The sudden start: --set spin_up_time=0
+    // run (benchmarks/results/taylor_couette.md, "A stepped start"). The sudden start: --set spin_up_time=0
     // --set steps=150000.
     info.presets["small"] = {{"equilibration_steps", "0"}, {"steps", "420000"},
                              {"spin_up_omega", "0.07"}, {"spin_up_time", "1750"},

@@ -478,14 +478,14 @@ ProblemInfo vibrated_sawtooth_info() {
         .real("tooth_height", 3, 0, 1e5, "sigma",
               "tooth height; 3 (two big grains) is this code's choice (the paper gives the edge "
               "lengths only): a 13 degree gentle slope and a steep edge tall enough to hold grains, "
-              "see the flux map in benchmarks/RESULTS.md", true)
+              "see the flux map in benchmarks/results/vibrated_sawtooth.md", true)
         .real("gentle_fraction", 1.0, 0.5, 1, "1",
               "share of the period taken by the gentle edge: 0.5 symmetric teeth, 1 a vertical "
               "steep edge (the paper's)")
         .real("rod_spacing", 0.5, 0, 10, "sigma", "spacing of the rods along the tooth profile", true)
         .choice("base_backing", "none", {"none", "smooth"},
                 "none: the rods alone (the paper's base; a thick or strongly shaken layer can "
-                "squeeze a grain between them: benchmarks/RESULTS.md, flux map); smooth: a surface "
+                "squeeze a grain between them: benchmarks/results/vibrated_sawtooth.md, flux map); smooth: a surface "
                 "along the profile behind the rods, met only by a grain pressed deeper than the "
                 "rods let it go")
         .real("rod_diameter", 0.2, 0, 10, "sigma", "diameter of the rods", true)
@@ -521,7 +521,7 @@ ProblemInfo vibrated_sawtooth_info() {
                      "initial_speed"});
     // CI: a periodic slot of two teeth, 6 wide, 4 grains deep (~870 grains), 100 cycles. A
     // monodisperse layer there drifts toward +x (the flow above the base wins; thinner layers
-    // drift the other way: benchmarks/RESULTS.md). A slot 3 wide holds the layer in two rows,
+    // drift the other way: benchmarks/results/vibrated_sawtooth.md). A slot 3 wide holds the layer in two rows,
     // whose packing can lock into a tilted order that drives a lasting drift even on a flat
     // base: 6 is wide enough not to.
     info.presets["tiny"] = {{"container", "slot"}, {"slot_ends", "periodic"}, {"length", "27"},
@@ -535,7 +535,7 @@ ProblemInfo vibrated_sawtooth_info() {
                              {"sample_every", "250"}, {"output.every", "50000"},
                              {"segregation_bins", "12"}, {"progress_interval", "60"}};
     // The paper's containers. Their 2.3e5 grains landing from the loose start squeeze a grain
-    // through the rods alone within 1000 steps (benchmarks/RESULTS.md): these presets back the
+    // through the rods alone within 1000 steps (benchmarks/results/vibrated_sawtooth.md): these presets back the
     // rods with the smooth surface.
     info.presets["box"] = {{"container", "box"}, {"base_backing", "smooth"}, {"steps", "1000000"}, {"sample_every", "500"},
                            {"output.every", "100000"}, {"checkpoint_every", "100000"},

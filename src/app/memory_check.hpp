@@ -13,7 +13,7 @@ namespace emergent::app {
 
 /// Bytes each particle needs at least: its fields in the particle store, twice (the store and
 /// the guards' last good state). The measured peak is 2-3x this (neighbour lists, ghosts, sort
-/// buffers: benchmarks/RESULTS.md), so a run refused here could never have run.
+/// buffers: benchmarks/results/host_speed.md), so a run refused here could never have run.
 double particle_bytes_lower_bound();
 
 /// Memory of this node as far as this process may use it: the smaller of the machine's total

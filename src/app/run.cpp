@@ -96,7 +96,7 @@ RunSettings run_settings(const Config& cfg) {
     settings.grid = parse_grid(cfg.scene(), cfg.text("grid"));
     const std::string& backend = cfg.text("backend");
     // auto: the device where this build has CUDA and the process sees one (the CUDA back end
-    // passed benchmarks/gpu_check.sh on an H200, benchmarks/RESULTS.md), else the host.
+    // passed benchmarks/gpu_check.sh on an H200, benchmarks/results/gpu.md), else the host.
     settings.backend = backend == "cuda"       ? Backend::Cuda
                        : backend == "checking" ? Backend::Checking
                        : backend == "host"     ? Backend::Host

@@ -48,11 +48,11 @@ Schema run_schema() {
         .integer("cell_subdivisions", 1, 1, 3, "1",
                  "cells per neighbour-list range (cutoff + skin) along each axis for the list "
                  "search: 2 tests 42 % fewer candidate pairs than 1 but ran 30 % slower for WCA "
-                 "and no faster for LJ at cutoff 2.5 (benchmarks/RESULTS.md)")
+                 "and no faster for LJ at cutoff 2.5 (benchmarks/results/host_speed.md)")
         .choice("integrator", "verlet", {"verlet", "omelyan"},
                 "time-step splitting: verlet (velocity Verlet, one force evaluation per step) or "
                 "omelyan (Omelyan-Mryglod-Folk minimum-error scheme, two evaluations per step, "
-                "~10x smaller leading error; see benchmarks/RESULTS.md for when it pays)")
+                "~10x smaller leading error; see benchmarks/results/work_precision.md for when it pays)")
         .choice("backend", "auto", {"auto", "host", "checking", "cuda"},
                 "where the particle data live and the per-particle loops run: host (CPU loops), "
                 "cuda (the step's loops as kernels on one CUDA device per rank, chosen by the "
@@ -82,7 +82,7 @@ Schema run_schema() {
                 "on: the ghosts' refresh is in flight while the pair forces that need no ghost are "
                 "computed (host half list, several ranks, no bodies or wedge), with the owned "
                 "particles ordered interior first; on 2 ranks of one node it gained nothing "
-                "(benchmarks/RESULTS.md): for slower networks; ordered: that order with a "
+                "(benchmarks/results/scaling.md): for slower networks; ordered: that order with a "
                 "blocking refresh (bit for bit on); off: plain cell order")
         .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
         .integer("checkpoint_every", 0, 0, 1e12, "steps",
