@@ -6,6 +6,8 @@
 
 #include <cmath>
 
+#include "emergent/execution.hpp"
+
 namespace emergent::decomp {
 __extension__ typedef __int128 Int128;  // GCC/Clang extension: exact 128-bit accumulation
 }  // namespace emergent::decomp
@@ -28,6 +30,7 @@ public:
         long long out[2] = {0, 0};
         MPI_Op op;
         MPI_Op_create(&add_words, 1, &op);
+        exec::count_collective();
         MPI_Allreduce(words, out, 1, word_pair_type(), op, comm);
         MPI_Op_free(&op);
         const Int128 sum = (static_cast<Int128>(out[1]) << 64) |

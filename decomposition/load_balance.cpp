@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "emergent/execution.hpp"
+
 namespace emergent::decomp {
 
 namespace {
@@ -78,6 +80,7 @@ BalanceReport balance_cuts(RankGrid& grid, const Vec3* position, const std::uint
             const auto b = static_cast<std::size_t>(u >= 0 ? std::min(u, last) : 0.0);
             profile[b] += cost[i];
         }
+        exec::count_collective();
         MPI_Allreduce(MPI_IN_PLACE, profile.data(), static_cast<int>(profile.size()), MPI_LONG_LONG,
                       MPI_SUM, grid.comm());
         const std::vector<double> target = equal_share_planes(profile, lo, hi, parts);
@@ -96,7 +99,9 @@ double cost_imbalance(MPI_Comm comm, const std::uint32_t* cost, std::size_t n) {
     long long most = 0, total = 0;
     int ranks = 1;
     MPI_Comm_size(comm, &ranks);
+    exec::count_collective();
     MPI_Allreduce(&local, &most, 1, MPI_LONG_LONG, MPI_MAX, comm);
+    exec::count_collective();
     MPI_Allreduce(&local, &total, 1, MPI_LONG_LONG, MPI_SUM, comm);
     return total > 0 ? static_cast<double>(most) * ranks / static_cast<double>(total) : 1.0;
 }

@@ -46,11 +46,16 @@ struct ElementOf {
 };
 
 /// Host<->device traffic of this process, counted by the back ends: whole arrays (particle
-/// data, lists) apart from scalars (a reduction's result, a flag), so a test can assert that a
-/// step moves no array. The host back end moves nothing.
+/// data, lists) apart from scalars (a reduction's result, a flag: each a read-back the host
+/// waits for), so a test can assert that a step moves no array. The host back end moves
+/// nothing. With them the work a step is made of: passes over particles (the loops launched
+/// through a Target, kernel launches on a device; a sort counts as one) and collective
+/// operations across ranks (decomp's reductions and the engine's own), the step ledger's counts
+/// (Simulation::step_ledger).
 struct Transfers {
     std::uint64_t arrays = 0, array_bytes = 0;
     std::uint64_t scalars = 0, scalar_bytes = 0;
+    std::uint64_t passes = 0, collectives = 0;
 };
 inline Transfers& transfers() {
     static Transfers counts;
@@ -61,6 +66,9 @@ inline void count_scalar(std::size_t bytes) {
     transfers().scalars += 1;
     transfers().scalar_bytes += bytes;
 }
+
+/// Counts a collective operation across ranks (every rank counts its own call).
+inline void count_collective() { transfers().collectives += 1; }
 
 /// Host back end: plain loops the compiler can vectorise.
 struct Host {};
@@ -204,15 +212,19 @@ inline namespace host_only {
 inline void count_result(const Target& target, std::size_t bytes) {
     if (target.separate && !target.device) count_scalar(bytes);
 }
+/// Every loop launched through a Target, on every back end.
+inline void count_pass() { transfers().passes += 1; }
 
 template <class Functor>
 void for_each(const Target& target, std::size_t n, const Functor& f) {
+    count_pass();
     EMERGENT_ON_DEVICE(for_each, n, f);
     for_each(Host{}, n, f);
 }
 
 template <class T, class F>
 T transform_sum(const Target& target, std::size_t n, const F& f) {
+    count_pass();
     EMERGENT_ON_DEVICE(transform_sum<T>, n, f);
     count_result(target, sizeof(T));
     return transform_sum<T>(Host{}, n, f);
@@ -220,6 +232,7 @@ T transform_sum(const Target& target, std::size_t n, const F& f) {
 
 template <class T, class Pred, class F>
 T transform_sum_if(const Target& target, std::size_t n, T init, const Pred& pred, const F& f) {
+    count_pass();
     EMERGENT_ON_DEVICE(transform_sum_if, n, init, pred, f);
     count_result(target, sizeof(T));
     return transform_sum_if(Host{}, n, init, pred, f);
@@ -227,6 +240,7 @@ T transform_sum_if(const Target& target, std::size_t n, T init, const Pred& pred
 
 template <class T, class F>
 T transform_max(const Target& target, std::size_t n, T init, const F& f) {
+    count_pass();
     EMERGENT_ON_DEVICE(transform_max, n, init, f);
     count_result(target, sizeof(T));
     return transform_max(Host{}, n, init, f);
@@ -234,6 +248,7 @@ T transform_max(const Target& target, std::size_t n, T init, const F& f) {
 
 template <class Pred>
 std::size_t first_index(const Target& target, std::size_t n, const Pred& pred) {
+    count_pass();
     EMERGENT_ON_DEVICE(first_index, n, pred);
     count_result(target, sizeof(std::size_t));
     return first_index(Host{}, n, pred);
@@ -243,6 +258,7 @@ std::size_t first_index(const Target& target, std::size_t n, const Pred& pred) {
 /// to the host (a scalar transfer on a separate back end).
 template <class T>
 T exclusive_scan(const Target& target, const T* in, T* out, std::size_t n) {
+    count_pass();
     EMERGENT_ON_DEVICE(exclusive_scan, in, out, n);
     count_result(target, sizeof(T));
     return exclusive_scan(Host{}, in, out, n);
@@ -251,6 +267,7 @@ T exclusive_scan(const Target& target, const T* in, T* out, std::size_t n) {
 /// See the host version; keys and values are arrays in the target's memory.
 inline void sort_pairs(const Target& target, std::uint32_t* keys, std::uint32_t* values,
                        std::size_t n, int key_bits = 32) {
+    count_pass();
     if (target.device) {
 #if defined(__CUDACC__)
         sort_pairs(on_device(target), keys, values, n, key_bits);

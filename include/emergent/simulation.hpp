@@ -167,6 +167,23 @@ struct PhaseTimes {
     double collective_wait_after_build = 0;
 };
 
+/// The work of one step or one list build on this rank, as the step ledger counts it
+/// (exec::Transfers): passes over particles (kernel launches on a device), results read back to
+/// the host, collective operations across ranks, arrays and their bytes moved between the host
+/// and the back end.
+struct StepWork {
+    std::uint64_t passes = 0, read_backs = 0, collectives = 0, arrays = 0, array_bytes = 0;
+};
+
+/// The step ledger: the most work any one step of each kind took since reset_phase_times(),
+/// as a budget (tests hold it): plain steps (no build, no sampling), sampled steps (energy and
+/// virial, no build), and list builds by themselves (the build inside a step; a step that
+/// builds is counted there only).
+struct StepLedger {
+    StepWork plain_step, sampled_step, list_build;
+    long long plain_steps = 0, sampled_steps = 0, builds = 0;
+};
+
 /// A particle system decomposed over the ranks of a communicator.
 ///
 /// A scene sets the box, species masses, force terms, thermostat and particles; then
@@ -336,8 +353,10 @@ public:
     /// reset_phase_times(), by purpose (ghost refresh, ghost build, migration); collectives
     /// (the rebuild vote, sums) are not counted. What the communication model is checked against.
     MessageTraffic message_traffic() const;
-    /// Zeroes phase_times() and message_traffic(): the measured phase starts.
+    /// Zeroes phase_times(), message_traffic() and step_ledger(): the measured phase starts.
     void reset_phase_times();
+    /// The most work a step of each kind took on this rank since reset_phase_times().
+    const StepLedger& step_ledger() const;
 
 private:
     struct Engine;

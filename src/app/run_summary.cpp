@@ -179,6 +179,24 @@ std::string summary_json(const Simulation& sim, const Config& cfg,
     };
     field("transfers", "{\"arrays\": " + total(moved.arrays) + ", \"array_bytes\": " +
                            total(moved.array_bytes) + ", \"scalars\": " + total(moved.scalars) + "}");
+    // The step ledger of the measured phase: the most work one step of each kind took, the
+    // largest over the ranks.
+    const StepLedger& ledger = sim.step_ledger();
+    auto work = [&](const StepWork& w) {
+        long long v[5] = {static_cast<long long>(w.passes), static_cast<long long>(w.read_backs),
+                          static_cast<long long>(w.collectives), static_cast<long long>(w.arrays),
+                          static_cast<long long>(w.array_bytes)};
+        MPI_Allreduce(MPI_IN_PLACE, v, 5, MPI_LONG_LONG, MPI_MAX, comm);
+        return "{\"passes\": " + std::to_string(v[0]) + ", \"read_backs\": " + std::to_string(v[1]) +
+               ", \"collectives\": " + std::to_string(v[2]) + ", \"arrays\": " + std::to_string(v[3]) +
+               ", \"array_bytes\": " + std::to_string(v[4]) + "}";
+    };
+    field("step_ledger", "{\"plain_step\": " + work(ledger.plain_step) +
+                             ", \"sampled_step\": " + work(ledger.sampled_step) +
+                             ", \"list_build\": " + work(ledger.list_build) +
+                             ", \"plain_steps\": " + std::to_string(ledger.plain_steps) +
+                             ", \"sampled_steps\": " + std::to_string(ledger.sampled_steps) +
+                             ", \"builds\": " + std::to_string(ledger.builds) + "}");
     // Device memory the run holds, all ranks (with one device per rank; ranks sharing one
     // count each other's too).
     if (sim.backend() == Backend::Cuda)

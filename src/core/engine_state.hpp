@@ -3,6 +3,7 @@
 // and the rigid bodies where the loops find them, the species' masses, the clock. The parts
 // (Neighbourhood, ForceEvaluation, Integration) each hold a reference to it and own the rest.
 #pragma once
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "decomposition/rank_grid.hpp"
+#include "emergent/execution.hpp"
 #include "emergent/simulation.hpp"
 #include "integrate/particle_sums.hpp"
 #include "particles/resident.hpp"
@@ -37,6 +39,26 @@ private:
     std::chrono::steady_clock::time_point start_;
 };
 
+/// The ledger's counts since `before` (exec::Transfers: scalars are read-backs).
+inline StepWork work_since(const exec::Transfers& before) {
+    const exec::Transfers& now = exec::transfers();
+    StepWork w;
+    w.passes = now.passes - before.passes;
+    w.read_backs = now.scalars - before.scalars;
+    w.collectives = now.collectives - before.collectives;
+    w.arrays = now.arrays - before.arrays;
+    w.array_bytes = now.array_bytes - before.array_bytes;
+    return w;
+}
+/// Each count of `most` at least that of `w`.
+inline void keep_most(StepWork& most, const StepWork& w) {
+    most.passes = std::max(most.passes, w.passes);
+    most.read_backs = std::max(most.read_backs, w.read_backs);
+    most.collectives = std::max(most.collectives, w.collectives);
+    most.arrays = std::max(most.arrays, w.arrays);
+    most.array_bytes = std::max(most.array_bytes, w.array_bytes);
+}
+
 struct EngineState {
     EngineState() = default;
     // The residents point into this object.
@@ -50,6 +72,7 @@ struct EngineState {
     /// Where the loops run (exec::Target): the host's loops, or CUDA kernels.
     exec::Target target;
     PhaseTimes times;
+    StepLedger ledger;
     long long n_global = 0, n_free = 0, n_bodies = 0, step = 0;
     double time = 0;
     std::vector<double> mass{1.0}, inverse_mass{1.0};

@@ -68,11 +68,17 @@ void ForceEvaluation::compute_on_backend(bool sample, double at) {
     BackendParticles particles = backend_particles();
     sums_ = ForceSums{};
     ForceContext context{&s_.mass, s_.box, at};
-    // A first term that writes every owned force spares the pass clearing them; the ghosts' are
-    // cleared all the same.
+    // A first term that writes every owned force spares the pass clearing them. The ghosts'
+    // are cleared once per build: no loop of the full list writes a ghost's force (they are
+    // kept defined for whatever copies the whole array).
     const bool replace = !s_.bodies() && !terms_.empty() && terms_.front()->stores_on_backend();
-    const std::size_t cleared = replace ? particles.n_owned : 0;
-    exec::for_each(s_.target, particles.size - cleared, integrate::ZeroVector{particles.force + cleared});
+    if (!replace) {
+        exec::for_each(s_.target, particles.size, integrate::ZeroVector{particles.force});
+    } else if (ghosts_cleared_at_ != near_.build_serial()) {
+        exec::for_each(s_.target, particles.size - particles.n_owned,
+                       integrate::ZeroVector{particles.force + particles.n_owned});
+        ghosts_cleared_at_ = near_.build_serial();
+    }
     for (const auto& term : terms_) {
         context.replace_forces = replace && term == terms_.front();
         term->add_forces_on_backend(particles, context, sample, sums_);

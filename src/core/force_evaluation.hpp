@@ -43,6 +43,7 @@ private:
     std::vector<std::unique_ptr<ForceTerm>> terms_;
     ForceSums sums_;
     std::vector<Real> energy_scratch_, virial_scratch_, overlap_scratch_;  ///< host back end's sums
+    unsigned long long ghosts_cleared_at_ = 0;  ///< the build after which the ghosts' forces were zeroed
 };
 
 }  // namespace emergent

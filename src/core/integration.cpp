@@ -103,6 +103,7 @@ void Integration::thermostat_free_particles() {
     double sums[5] = {local.mass, local.kinetic, local.momentum.x, local.momentum.y, local.momentum.z};
     {
         PhaseTimer summing(s_.times.collective_wait, after_build_wait());
+        exec::count_collective();
         MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, s_.comm);
     }
     if (s_.n_free < 2 || !(sums[0] > 0)) return;

@@ -114,6 +114,7 @@ ThermoSample Simulation::measure() const {
     t.pressure = (2 * v[0] + v[2]) / (3 * e.box.volume());
     t.momentum = {v[3], v[4], v[5]};
     t.angular_momentum = {v[6], v[7], v[8]};
+    exec::count_collective();
     MPI_Allreduce(&e.forces.sums().max_overlap, &t.max_overlap, 1, MPI_DOUBLE, MPI_MAX, e.comm);
     return t;
 }
@@ -130,6 +131,7 @@ KineticParts Simulation::kinetic_parts() const {
                                                                    kAngularMomentum))
                    : Vec3{0, 0, 0};
     double sums[3] = {free, bodies.x, bodies.y};
+    exec::count_collective();
     MPI_Allreduce(MPI_IN_PLACE, sums, 3, MPI_DOUBLE, MPI_SUM, e.comm);
     KineticParts k{sums[0], sums[1], sums[2], e.bodies() ? e.n_free : e.n_global,
                    e.bodies() ? e.n_bodies : 0};

@@ -74,7 +74,7 @@ void Neighbourhood::choose_layout(const std::vector<std::unique_ptr<ForceTerm>>&
     // Wedge images and bodies' spheres may lie inside a domain as ghosts: no particle is sure to
     // be free of them, so nothing is ordered. Only for the overlap (or to check it): the order
     // takes some memory locality from the force loop and the list build, and on one node the
-    // overlap gained nothing (benchmarks/RESULTS.md), so runs without it keep the cell order.
+    // overlap gained nothing (benchmarks/results/scaling.md), so runs without it keep the cell order.
     interior_first_ = !s_.particles.mirrored() && !full_list_ && !s_.bodies() && !s_.box.wedge.active() &&
                       !terms.empty() && terms.front()->cutoff() > 0 && terms.front()->honours_range() &&
                       s_.grid->size() > 1 && (s_.settings.overlap_halo || s_.settings.interior_order);
@@ -130,6 +130,7 @@ bool Neighbourhood::rebuild_where_particles_live() {
         return false;
     if (!backend_build_.fault().empty()) throw InstabilityError(backend_build_.fault());
     s_.times.migrate += backend_build_.take_migration_seconds();
+    backend_halo_.prepare(s_.target, halo_, mirror, EngineState::kHaloPack);
     list_offset_ = backend_build_.offsets();
     list_index_ = backend_build_.neighbours();
     reference_on_backend_ = backend_build_.reference();
@@ -143,6 +144,14 @@ bool Neighbourhood::rebuild_where_particles_live() {
 }
 
 void Neighbourhood::rebuild(bool on_backend) {
+    const exec::Transfers before = exec::transfers();
+    ++build_serial_;
+    build(on_backend);
+    keep_most(s_.ledger.list_build, work_since(before));
+    ++s_.ledger.builds;
+}
+
+void Neighbourhood::build(bool on_backend) {
     PhaseTimer timer(s_.times.neighbour);
     drift_moved_known_ = false;
     if (on_backend && s_.mirror() && full_list_ && rebuild_where_particles_live()) return;
@@ -195,6 +204,7 @@ void Neighbourhood::rebuild(bool on_backend) {
         reference_on_backend_ = static_cast<const Vec3*>(
             mirror->upload(EngineState::kReference, reference.data(), reference.size() * sizeof(Vec3)));
         backend_halo_.place(halo_, *mirror, EngineState::kHaloIndex);
+        backend_halo_.prepare(s_.target, halo_, *mirror, EngineState::kHaloPack);
     }
     if (s_.bodies()) {
         s_.rigid.index_constituents(store);

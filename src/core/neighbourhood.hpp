@@ -78,6 +78,8 @@ public:
 
     double ghost_width() const { return s_.ghost_width(list_.list_cutoff()); }
     long long rebuilds() const { return rebuilds_; }
+    /// Counts every build of this object (never set back, unlike rebuilds()).
+    unsigned long long build_serial() const { return build_serial_; }
     void set_rebuilds(long long n) { rebuilds_ = n; }
     /// The step rebuilt the list: its first global sum's wait is counted apart.
     bool built_this_step() const { return built_this_step_; }
@@ -102,6 +104,8 @@ public:
     void gather_on_host();
 
 private:
+    /// rebuild() less the ledger's count.
+    void build(bool on_backend);
     void set_pair_ranges(const std::vector<std::unique_ptr<ForceTerm>>& terms, double cutoff);
     bool rebuild_where_particles_live();
     void place_full_list();
@@ -117,6 +121,7 @@ private:
     NeighbourList list_;
     std::vector<std::uint32_t> order_;
     long long rebuilds_ = 0;
+    unsigned long long build_serial_ = 0;
     bool moved_since_build_ = true;  ///< a drift since the last list build
     std::vector<std::pair<std::int64_t, Vec3>> restored_reference_;
     bool bodies_dealt_ = false;

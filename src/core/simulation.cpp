@@ -265,6 +265,7 @@ double Simulation::cost_imbalance() const {
 
 void Simulation::step(bool sample) {
     Engine& e = *engine_;
+    const exec::Transfers before = exec::transfers();
     const double dt = e.settings.dt;
     // Rebalances by the step's index alone, so a continued run moves the planes where the
     // uninterrupted one did.
@@ -296,6 +297,10 @@ void Simulation::step(bool sample) {
     ++e.step;
     e.time += dt;
     e.motion.apply_wall_layers();  // keyed by the step just completed
+    if (!e.neighbourhood.built_this_step()) {
+        keep_most(sample ? e.ledger.sampled_step : e.ledger.plain_step, work_since(before));
+        ++(sample ? e.ledger.sampled_steps : e.ledger.plain_steps);
+    }
 }
 
 ParticleStore& Simulation::particles() {
@@ -383,7 +388,10 @@ MessageTraffic Simulation::message_traffic() const {
             since(t.migration, from.migration)};
 }
 
+const StepLedger& Simulation::step_ledger() const { return engine_->ledger; }
+
 void Simulation::reset_phase_times() {
+    engine_->ledger = StepLedger{};
     engine_->times = PhaseTimes{};
     engine_->wait_at_reset = engine_->neighbourhood.halo().refresh_wait_seconds();
     engine_->traffic_at_reset = MessageTraffic{};

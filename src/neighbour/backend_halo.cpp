@@ -82,13 +82,17 @@ void BackendHalo::trace_roots(const Target& target, const decomp::HaloExchange& 
     shifts_ = shifts;
 }
 
+void BackendHalo::prepare(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
+                          std::size_t scratch_slot) {
+    if (refresh_ != Refresh::undecided) return;
+    refresh_ = from_roots(halo) ? Refresh::from_roots : Refresh::by_swaps;
+    if (refresh_ == Refresh::from_roots) trace_roots(target, halo, mirror, scratch_slot);
+}
+
 void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
                          ParticleMirror& mirror, Vec3* x, bool is_position,
                          std::size_t scratch_slot) {
-    if (refresh_ == Refresh::undecided) {
-        refresh_ = from_roots(halo) ? Refresh::from_roots : Refresh::by_swaps;
-        if (refresh_ == Refresh::from_roots) trace_roots(target, halo, mirror, scratch_slot);
-    }
+    prepare(target, halo, mirror, scratch_slot);
     if (refresh_ == Refresh::from_roots) {
         exec::for_each(target, n_ghost_, decomp::GhostFromRoot{x, roots_, shifts_, is_position, x + n_owned_});
         return;

@@ -39,13 +39,18 @@ public:
 
     /// Whether gather() refreshes this plan's ghosts from their roots in one pass.
     static bool from_roots(const decomp::HaloExchange& halo);
+    /// Decides how the current plan is refreshed, and traces its roots where it is from them:
+    /// part of the build, so the steps that follow it do only their one pass (else the first
+    /// gather() does it). Uses the scratch slots as gather() does.
+    void prepare(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
+                 std::size_t scratch_slot);
 
 private:
     /// Traces the current plan's ghosts to their roots (on the back end).
     void trace_roots(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
                      std::size_t scratch_slot);
 
-    /// How the current plan is refreshed, decided at its first refresh.
+    /// How the current plan is refreshed, decided by prepare() or at its first refresh.
     enum class Refresh { undecided, from_roots, by_swaps } refresh_ = Refresh::undecided;
     const int* roots_ = nullptr;  ///< from_roots: each ghost's owned root and total shift
     const Vec3* shifts_ = nullptr;

@@ -372,7 +372,7 @@ void NeighbourList::build(const ParticleStore& store, const CellList& cells,
     }
     offset_.assign(n_owned + 1, 0);
     // The search runs on the cells' single-precision copy, its range widened by the copy's
-    // rounding so that no pair in range is missed (benchmarks/RESULTS.md, "Memory").
+    // rounding so that no pair in range is missed (benchmarks/results/host_speed.md, "Peak memory against LAMMPS").
     const BinnedPoint* xb = cells.binned_positions();
     const float r2f = binned_limit(list_cutoff(), cells);
     const unsigned n_species = static_cast<unsigned>(n_range_species_);
@@ -490,6 +490,7 @@ bool NeighbourList::rebuild_due(double local, MPI_Comm comm) const {
     // NaN is mapped to +inf so the MPI max carries it to every rank.
     if (std::isnan(local)) local = std::numeric_limits<double>::infinity();
     double global = 0;
+    exec::count_collective();
     MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, comm);
     if (std::isinf(global))
         throw InstabilityError("non-finite particle position: the run went unstable "

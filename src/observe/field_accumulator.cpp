@@ -8,6 +8,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "emergent/execution.hpp"
+
 namespace emergent {
 
 FieldAccumulator::FieldAccumulator(const FieldGrid& grid)
@@ -31,6 +33,7 @@ void FieldAccumulator::add_sums(const std::vector<double>& sample) {
 
 std::vector<double> FieldAccumulator::global_sums(MPI_Comm comm) const {
     std::vector<double> total(sums_.size());
+    exec::count_collective();
     MPI_Allreduce(sums_.data(), total.data(), static_cast<int>(sums_.size()), MPI_DOUBLE, MPI_SUM,
                   comm);
     return total;
@@ -47,6 +50,7 @@ void FieldAccumulator::restore(const std::vector<double>& sums, long long sample
 }
 
 FieldFrame FieldAccumulator::take(MPI_Comm comm) {
+    exec::count_collective();
     MPI_Allreduce(MPI_IN_PLACE, sums_.data(), static_cast<int>(sums_.size()), MPI_DOUBLE, MPI_SUM,
                   comm);
     const int n = grid_.n_cells();

@@ -1,0 +1,99 @@
+#!/usr/bin/env python3
+"""The step ledger holds its budgets: every scene's `tiny` run on the `checking` back end (which
+launches, reads back and copies what a device run would) on 1 and 2 ranks, and the WCA fluid
+without a thermostat (the speed benchmark's physics), report in summary.json the most passes,
+read-backs, collectives and arrays moved that one plain step, one sampled step and one list
+build took (Simulation::step_ledger). None may exceed its budget below: the counts are exact
+(no timing in them), so a change that adds a pass, a read-back, a collective or a copy fails
+here and must either be undone or move its budget in a commit that says why.
+
+The WCA plain step's budget is the device's target (4 passes: kick-drift with the rebuild test,
+ghost refresh, forces, kick; 1 read-back, the rebuild test's displacement; 1 collective, the
+rebuild vote; no array). The other rows are what each scene takes today (2026-12-07,
+benchmarks/logs/step_ledger_2026-12-07.log), not targets: a list build's target is 12 passes
+and 2 read-backs, and no plain step of any scene should move an array on one rank.
+
+usage: step_budgets.py EMERGENT MPIRUN"""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+# (scene, ranks, extra settings): {kind: (passes, read_backs, collectives, arrays)}
+BUDGETS = {
+    ("lj-fluid", 1, "thermostat=none"): {"plain_step": (4, 1, 1, 0), "sampled_step": (6, 3, 1, 0),
+                                         "list_build": (50, 9, 3, 0)},
+    ("lj-fluid", 2, "thermostat=none"): {"plain_step": (9, 1, 1, 4), "sampled_step": (11, 3, 1, 4),
+                                         "list_build": (60, 16, 3, 7)},
+    ("lj-fluid", 1, ""): {"plain_step": (5, 2, 2, 0), "sampled_step": (7, 4, 2, 0), "list_build": (50, 9, 3, 0)},
+    ("lj-fluid", 2, ""): {"plain_step": (10, 2, 2, 4), "sampled_step": (12, 4, 2, 4), "list_build": (60, 16, 3, 8)},
+    ("capsid-assembly", 1, ""): {"plain_step": (11, 2, 2, 3), "sampled_step": (13, 4, 2, 0),
+                                 "list_build": (64, 13, 4, 8)},
+    ("capsid-assembly", 2, ""): {"plain_step": (16, 2, 2, 7), "sampled_step": (18, 4, 2, 4),
+                                 "list_build": (89, 26, 4, 12)},
+    ("granular-bed", 1, ""): {"plain_step": (18, 1, 1, 0), "sampled_step": (24, 7, 1, 0), "list_build": (44, 9, 3, 0)},
+    ("granular-bed", 2, ""): {"plain_step": (18, 1, 1, 8), "sampled_step": (24, 7, 1, 8), "list_build": (58, 14, 3, 4)},
+    ("planar-couette", 1, ""): {"plain_step": (12, 3, 1, 0), "sampled_step": (14, 5, 1, 0),
+                                "list_build": (44, 9, 4, 0)},
+    ("planar-couette", 2, ""): {"plain_step": (12, 3, 1, 2), "sampled_step": (14, 5, 1, 2),
+                                "list_build": (59, 15, 4, 4)},
+    ("rayleigh-benard", 1, ""): {"plain_step": (17, 5, 3, 2), "sampled_step": (20, 8, 3, 0),
+                                 "list_build": (44, 9, 4, 0)},
+    ("rayleigh-benard", 2, ""): {"plain_step": (17, 5, 3, 6), "sampled_step": (20, 8, 3, 4),
+                                 "list_build": (60, 16, 4, 8)},
+    ("rotating-drum", 1, ""): {"plain_step": (24, 1, 1, 7), "sampled_step": (34, 11, 1, 0),
+                               "list_build": (57, 12, 4, 6)},
+    ("rotating-drum", 2, ""): {"plain_step": (24, 1, 1, 11), "sampled_step": (34, 11, 1, 4),
+                               "list_build": (86, 23, 4, 8)},
+    ("taylor-couette", 1, ""): {"plain_step": (16, 5, 1, 2), "sampled_step": (18, 7, 1, 0),
+                                "list_build": (56, 11, 4, 0)},
+    ("taylor-couette", 2, ""): {"plain_step": (16, 5, 1, 4), "sampled_step": (18, 7, 1, 2),
+                                "list_build": (72, 17, 4, 4)},
+    ("vibrated-sawtooth", 1, ""): {"plain_step": (25, 4, 1, 6), "sampled_step": (37, 16, 1, 0),
+                                   "list_build": (44, 9, 4, 2)},
+    ("vibrated-sawtooth", 2, ""): {"plain_step": (25, 4, 1, 14), "sampled_step": (37, 16, 1, 8),
+                                   "list_build": (60, 16, 4, 9)},
+}
+FIELDS = ("passes", "read_backs", "collectives", "arrays")
+
+
+def main():
+    exe, mpirun = sys.argv[1], sys.argv[2]
+    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
+    listed = subprocess.run([exe, "list"], capture_output=True, text=True, check=True).stdout.split()
+    scenes = {line for line in listed if "-" in line and line in {k[0] for k in BUDGETS}}
+    missing = {k[0] for k in BUDGETS} - scenes
+    failures = []
+    if missing:
+        failures.append(f"scenes with a budget that `emergent list` does not name: {sorted(missing)}")
+    with tempfile.TemporaryDirectory() as tmp:
+        for (scene, ranks, extra), budget in BUDGETS.items():
+            out = os.path.join(tmp, f"{scene}.{ranks}.{len(extra)}")
+            sets = ["--set", "backend=checking", "--set", "progress_interval=0"]
+            if extra:
+                sets += ["--set", extra]
+            cmd = [mpirun, "-q", "--oversubscribe", "-np", str(ranks), exe, "run", scene, "--preset", "tiny",
+                   *sets, "-o", out, "--summary-json", out + ".json"]
+            run = subprocess.run(cmd, capture_output=True, text=True, env=env)
+            if run.returncode != 0:
+                failures.append(f"{scene} on {ranks}: exit {run.returncode}: {run.stdout[-300:]}{run.stderr[-300:]}")
+                continue
+            ledger = json.load(open(out + ".json"))["step_ledger"]
+            for kind in ("plain_steps", "sampled_steps", "builds"):
+                if ledger[kind] < 1:  # a kind never seen would hold any budget
+                    failures.append(f"{scene} on {ranks} {extra}: no {kind} in the run")
+            for kind, limits in budget.items():
+                got = tuple(ledger[kind][f] for f in FIELDS)
+                over = [f"{f} {g} > {b}" for f, g, b in zip(FIELDS, got, limits) if g > b]
+                print(f"{scene:18} np{ranks} {extra:16} {kind:13} {got} budget {limits}")
+                if over:
+                    failures.append(f"{scene} on {ranks} rank(s) {extra}: {kind}: " + ", ".join(over))
+    for f in failures:
+        print("FAIL:", f)
+    print(f"step_budgets: {len(BUDGETS)} runs, {len(failures)} over budget or failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
