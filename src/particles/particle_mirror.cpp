@@ -15,11 +15,16 @@ namespace emergent::exec {
 
 namespace {
 
+/// The checking back end's own memory. Every allocation starts poisoned (all bytes 0xFF: NaN
+/// in floating point, -1 or the largest index in integers), as a device's uninitialised memory
+/// may hold anything: a loop that reads what nothing wrote fails on a CPU, not only under a
+/// GPU's initcheck.
 class SeparateHostMemory final : public ArrayMemory {
 public:
     void* allocate(std::size_t bytes) override {
         void* p = std::malloc(bytes > 0 ? bytes : 1);
         if (!p) throw std::bad_alloc();
+        std::memset(p, 0xFF, bytes);
         return p;
     }
     void release(void* p) noexcept override { std::free(p); }
