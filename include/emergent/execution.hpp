@@ -167,6 +167,9 @@ struct Target {
     bool device = false;    ///< CUDA kernels; else host loops
     bool separate = false;  ///< the arrays are not the host's: a result read back is a transfer
     void* stream = nullptr; ///< the CUDA stream (cudaStream_t) of a device target
+    /// MPI reads and writes the target's memory: messages go without staging through the host
+    /// (a CUDA-aware MPI; on the checking back end, its separate memory as a test of the path).
+    bool direct_mpi = false;
 };
 
 /// Throws: a loop compiled without CUDA was asked to run on the device.

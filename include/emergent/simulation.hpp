@@ -46,6 +46,13 @@ enum class Backend {
 };
 
 /// How the neighbour list is laid out (run parameter `neighbour_list`).
+/// Messages between ranks straight from and into the back end's memory (RunSettings::mpi_direct).
+enum class MpiDirect {
+    Auto,  ///< where the MPI library reports that it reads CUDA device memory
+    On,    ///< always (a CUDA-aware MPI the query misses; the checking back end's test of the path)
+    Off,   ///< always staged through host memory
+};
+
 enum class ListLayout {
     /// Half on the host back end, full on the others (when every force term has a back-end form).
     Auto,
@@ -76,6 +83,7 @@ struct RunSettings {
     Integrator integrator = Integrator::VelocityVerlet;
     Int3 grid{0, 0, 0};  ///< ranks per axis; 0 = choose
     Backend backend = Backend::Host;
+    MpiDirect mpi_direct = MpiDirect::Auto;
     ListLayout list_layout = ListLayout::Auto;
     LoadBalance balance = LoadBalance::None;
     long long balance_every = 0;  ///< steps between rebalances with LoadBalance::Cost; 0: start only

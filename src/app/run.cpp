@@ -110,6 +110,8 @@ RunSettings run_settings(const Config& cfg) {
     settings.balance_every = cfg.integer("balance.every");
     settings.equilibration_steps = cfg.integer("equilibration_steps");
     settings.overlap_halo = cfg.text("halo_overlap") == "on";
+    const std::string& direct = cfg.text("mpi_direct");
+    settings.mpi_direct = direct == "on" ? MpiDirect::On : direct == "off" ? MpiDirect::Off : MpiDirect::Auto;
     settings.interior_order = cfg.text("halo_overlap") == "ordered";
     return settings;
 }

@@ -41,51 +41,10 @@ std::vector<const ProblemInfo*> ProblemRegistry::all() const {
     return list;
 }
 
-Schema run_schema() {
-    Schema s;
-    s.real("dt", 0.005, 0, 1, "tau", "integration time step", true)
-        .real("skin", 0.3, 0, 5, "sigma", "neighbour-list skin beyond the largest cutoff", true)
-        .integer("cell_subdivisions", 1, 1, 3, "1",
-                 "cells per neighbour-list range (cutoff + skin) along each axis for the list "
-                 "search: 2 tests 42 % fewer candidate pairs than 1 but ran 30 % slower for WCA "
-                 "and no faster for LJ at cutoff 2.5 (benchmarks/results/host_speed.md)")
-        .choice("integrator", "verlet", {"verlet", "omelyan"},
-                "time-step splitting: verlet (velocity Verlet, one force evaluation per step) or "
-                "omelyan (Omelyan-Mryglod-Folk minimum-error scheme, two evaluations per step, "
-                "~10x smaller leading error; see benchmarks/results/work_precision.md for when it pays)")
-        .choice("backend", "auto", {"auto", "host", "checking", "cuda"},
-                "where the particle data live and the per-particle loops run: host (CPU loops), "
-                "cuda (the step's loops as kernels on one CUDA device per rank, chosen by the "
-                "rank's index on its node; refused where there is none; checked on an H200 by "
-                "benchmarks/gpu_check.sh), checking (the host back end with its data kept "
-                "apart from the host copy, which is poisoned between syncs: bitwise host's "
-                "results, for tests), auto (cuda where this build has CUDA and a device is "
-                "visible, else host)")
-        .choice("neighbour_list", "auto", {"auto", "half", "full"},
-                "neighbour-list layout: half (each pair once, the host's fastest), full (each pair "
-                "under both members, the device's layout; every force term must have a back-end "
-                "form), auto (half on the host back end, full elsewhere where the terms allow)")
-        .integer("equilibration_steps", 1000, 0, 1e12, "steps",
-                 "steps run first, excluded from averages and timing")
-        .integer("steps", 10000, 0, 1e12, "steps", "measured steps (averaged and timed)")
-        .integer("sample_every", 100, 1, 1e9, "steps",
-                 "steps between samples of energy, temperature and pressure")
-        .integer("seed", 12345, 0, 9.2e18, "1", "random seed (initial state, thermostat)")
-        .text("grid", "auto", "rank grid as NXxNYxNZ (e.g. 2x1x1); auto minimises the ghost volume")
-        .choice("balance", "none", {"none", "cost"},
-                "where the planes between rank domains lie: none (equal slabs), cost (moved so that "
-                "each slab of ranks holds an equal share of the neighbour-list entries plus 2 per "
-                "particle, at the start and every balance.every steps; kept in checkpoints)")
-        .integer("balance.every", 1000, 0, 1e12, "steps",
-                 "steps between rebalances with balance=cost (0: at the start only)")
-        .choice("halo_overlap", "off", {"on", "off", "ordered"},
-                "on: the ghosts' refresh is in flight while the pair forces that need no ghost are "
-                "computed (host half list, several ranks, no bodies or wedge), with the owned "
-                "particles ordered interior first; on 2 ranks of one node it gained nothing "
-                "(benchmarks/results/scaling.md): for slower networks; ordered: that order with a "
-                "blocking refresh (bit for bit on); off: plain cell order")
-        .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)")
-        .integer("checkpoint_every", 0, 0, 1e12, "steps",
+namespace {
+/// What a run writes and checks: checkpoints, fields, guards, particle frames.
+void add_output_parameters(Schema& s) {
+    s.integer("checkpoint_every", 0, 0, 1e12, "steps",
                  "steps between checkpoints DIR/checkpoint.h5 (0: none; needs -o DIR)")
         .integer("fields.interval", 0, 0, 1e12, "steps",
                  "steps averaged into one frame of coarse-grained fields (0: no fields)")
@@ -109,10 +68,64 @@ Schema run_schema() {
         .real("output.snapshot_seconds", 10, 0, 1e300, "seconds",
               "wall seconds between rewrites of DIR/snapshot.h5, the latest fields and measures "
               "for scripts/watch (0: never)");
+}
+}  // namespace
+
+Schema run_schema() {
+    Schema s;
+    s.real("dt", 0.005, 0, 1, "tau", "integration time step", true)
+        .real("skin", 0.3, 0, 5, "sigma", "neighbour-list skin beyond the largest cutoff", true)
+        .integer("cell_subdivisions", 1, 1, 3, "1",
+                 "cells per neighbour-list range (cutoff + skin) along each axis for the list "
+                 "search: 2 tests 42 % fewer candidate pairs than 1 but ran 30 % slower for WCA "
+                 "and no faster for LJ at cutoff 2.5 (benchmarks/results/host_speed.md)")
+        .choice("integrator", "verlet", {"verlet", "omelyan"},
+                "time-step splitting: verlet (velocity Verlet, one force evaluation per step) or "
+                "omelyan (Omelyan-Mryglod-Folk minimum-error scheme, two evaluations per step, "
+                "~10x smaller leading error; see benchmarks/results/work_precision.md for when it pays)")
+        .choice("backend", "auto", {"auto", "host", "checking", "cuda"},
+                "where the particle data live and the per-particle loops run: host (CPU loops), "
+                "cuda (the step's loops as kernels on one CUDA device per rank, chosen by the "
+                "rank's index on its node; refused where there is none; checked on an H200 by "
+                "benchmarks/gpu_check.sh), checking (the host back end with its data kept "
+                "apart from the host copy, which is poisoned between syncs: bitwise host's "
+                "results, for tests), auto (cuda where this build has CUDA and a device is "
+                "visible, else host)")
+        .choice("mpi_direct", "auto", {"auto", "on", "off"},
+                "messages between ranks from and into the back end's memory without staging "
+                "through host memory: auto (where the MPI library says it reads CUDA device "
+                "memory), on (always: a CUDA-aware MPI the query does not report; on the checking "
+                "back end its separate memory goes to MPI as device memory would, the path's "
+                "test), off (always staged)")
+        .choice("neighbour_list", "auto", {"auto", "half", "full"},
+                "neighbour-list layout: half (each pair once, the host's fastest), full (each pair "
+                "under both members, the device's layout; every force term must have a back-end "
+                "form), auto (half on the host back end, full elsewhere where the terms allow)")
+        .integer("equilibration_steps", 1000, 0, 1e12, "steps",
+                 "steps run first, excluded from averages and timing")
+        .integer("steps", 10000, 0, 1e12, "steps", "measured steps (averaged and timed)")
+        .integer("sample_every", 100, 1, 1e9, "steps",
+                 "steps between samples of energy, temperature and pressure")
+        .integer("seed", 12345, 0, 9.2e18, "1", "random seed (initial state, thermostat)")
+        .text("grid", "auto", "rank grid as NXxNYxNZ (e.g. 2x1x1); auto minimises the ghost volume")
+        .choice("balance", "none", {"none", "cost"},
+                "where the planes between rank domains lie: none (equal slabs), cost (moved so that "
+                "each slab of ranks holds an equal share of the neighbour-list entries plus 2 per "
+                "particle, at the start and every balance.every steps; kept in checkpoints)")
+        .integer("balance.every", 1000, 0, 1e12, "steps",
+                 "steps between rebalances with balance=cost (0: at the start only)")
+        .choice("halo_overlap", "off", {"on", "off", "ordered"},
+                "on: the ghosts' refresh is in flight while the pair forces that need no ghost are "
+                "computed (host half list, several ranks, no bodies or wedge), with the owned "
+                "particles ordered interior first; on 2 ranks of one node it gained nothing "
+                "(benchmarks/results/scaling.md): for slower networks; ordered: that order with a "
+                "blocking refresh (bit for bit on); off: plain cell order")
+        .real("progress_interval", 10, 0, 1e9, "s", "wall seconds between progress lines (0: none)");
+    add_output_parameters(s);
     // A continued run keeps its field grid; everything else here is run control.
     s.structural({"fields.grid"})
         .adjustable({"dt", "skin", "cell_subdivisions", "integrator", "backend", "neighbour_list",
-                     "equilibration_steps", "steps", "sample_every", "seed", "grid", "balance", "balance.every", "halo_overlap",
+                     "equilibration_steps", "steps", "sample_every", "seed", "grid", "balance", "balance.every", "halo_overlap", "mpi_direct",
                      "progress_interval", "checkpoint_every", "fields.interval", "fields.sample_every", "guard.every", "guard.max_force",
                      "guard.max_overlap", "guard.max_energy_drift", "output.every",
                      "output.elements", "output.snapshot_seconds"});

@@ -51,6 +51,7 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
         engine_->bodies_resident.keep_mirror(
             std::make_unique<exec::ParticleMirror>(exec::separate_host_memory(), true));
         engine_->target.separate = true;
+        engine_->target.direct_mpi = settings.mpi_direct == MpiDirect::On;
         break;
     case Backend::Cuda:
         if (!gpu::device_present())
@@ -62,6 +63,8 @@ Simulation::Simulation(MPI_Comm comm, const RunSettings& settings)
         engine_->bodies_resident.keep_mirror(std::make_unique<exec::ParticleMirror>(exec::cuda_device_memory(), false));
         engine_->target.device = true;
         engine_->target.separate = true;
+        engine_->target.direct_mpi = settings.mpi_direct == MpiDirect::On ||
+                                     (settings.mpi_direct == MpiDirect::Auto && exec::mpi_reads_device_memory());
         break;
     }
 }

@@ -47,7 +47,6 @@ void BackendHalo::place_on_backend(std::vector<const int*> index, std::vector<st
     swap_index_ = std::move(index);
     swap_count_ = std::move(count);
     refresh_ = Refresh::undecided;
-    if (!asked_) direct_ = mpi_reads_device_memory(), asked_ = true;
 }
 
 bool BackendHalo::from_roots(const decomp::HaloExchange& halo) {
@@ -114,9 +113,9 @@ void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
         exec::for_each(target, n,
                        decomp::GhostImage{x, index, packed, halo.wedge(), plan.turns, shift});
         const std::size_t send_bytes = n * sizeof(Vec3), receive_bytes = plan.import_count * sizeof(Vec3);
-        if (target.device && direct_) {
-            // CUDA-aware MPI reads and writes device memory: no staging; the packing kernel
-            // must have finished first.
+        if (target.direct_mpi) {
+            // MPI reads and writes the back end's memory: no staging; the packing kernel must
+            // have finished first.
             synchronize(target);
             halo.exchange_bytes(k, packed, send_bytes, x + plan.import_first, receive_bytes);
             continue;

@@ -58,7 +58,6 @@ private:
     std::vector<int> index_;  ///< export indices of all swaps, swap after swap (place())
     std::vector<const int*> swap_index_;  ///< where swap k's are on the back end
     std::vector<std::size_t> swap_count_;
-    bool direct_ = false, asked_ = false;  ///< MPI reads device memory (asked once)
 };
 
 }  // namespace emergent::exec

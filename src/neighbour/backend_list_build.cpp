@@ -184,8 +184,8 @@ std::size_t BackendListBuild::exchange(const exec::Target& target, exec::Particl
     decomp::send_receive(&n_send, sizeof n_send, to, &n_recv, sizeof n_recv, from, kCountTag, comm, tally);
     std::uint32_t* on_backend = buffer(mirror, slot, n_recv * (record / 4));
     *received = on_backend;
-    if (target.device && exec::mpi_reads_device_memory()) {
-        // CUDA-aware MPI reads and writes device memory: no staging; the packing must be done.
+    if (target.direct_mpi) {
+        // MPI reads and writes the back end's memory: no staging; the packing must be done.
         exec::synchronize(target);
         decomp::send_receive(packed, count * record, to, on_backend, n_recv * record, from, kDataTag, comm,
                              tally);
