@@ -156,72 +156,58 @@ void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double widt
     store.resize_ghosts(0);
     swaps_.clear();
     const std::size_t stride = packed_bytes(store, fields);
-    const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    const Vec3 lo = grid.lo(), hi = grid.hi();
     wedge_ = grid.global().wedge;
-    for (int d = 0; d < 3; ++d) {
-        if (d == 2 && wedge_.active()) build_wedge_images(store, width, fields, stride);
-        // Both faces of an axis export from the particles present before the axis began,
-        // so a ghost imported through -d is not sent straight back through +d.
-        const std::size_t n_candidates = store.size();
-        for (int side = 0; side < 2; ++side) {
-            Swap swap;
-            swap.send_rank = grid.neighbour(d, side);
-            swap.recv_rank = grid.neighbour(d, 1 - side);
-            swap.to_self = swap.send_rank == grid.rank() && swap.recv_rank == grid.rank();
-            if (grid.wraps(d, side)) swap.shift[d] = side == 0 ? len[d] : -len[d];
-            if (swap.send_rank != MPI_PROC_NULL) {
-                for (std::size_t i = 0; i < n_candidates; ++i) {
-                    const double x = store.position[i][d];
-                    if (side == 0 ? x < lo[d] + width : x >= hi[d] - width)
-                        swap.export_index.push_back(static_cast<int>(i));
-                }
-            }
-            unsigned long n_send = swap.export_index.size(), n_recv = 0;
-            if (swap.to_self)
-                n_recv = n_send;
-            else
-                send_receive(&n_send, sizeof n_send, swap.send_rank, &n_recv, sizeof n_recv,
-                             swap.recv_rank, kCountTag, comm_, build_traffic_);
-            send_buffer_.clear();
-            pack_fields_shifted(store, fields, swap, stride);
-            recv_buffer_.resize(n_recv * stride);
+    std::size_t n_candidates = 0;
+    for (const SwapRoute& route : halo_routes(grid)) {
+        // Both faces of a phase export from the particles present before it began, so a ghost
+        // imported through -d is not sent straight back through +d.
+        if (route.starts_phase) n_candidates = store.size();
+        Swap swap;
+        swap.send_rank = route.send_rank;
+        swap.recv_rank = route.recv_rank;
+        swap.to_self = route.to_self;
+        swap.shift = route.shift;
+        swap.turns = route.turns;
+        const int d = route.axis;
+        for (std::size_t i = 0; i < n_candidates && swap.send_rank != MPI_PROC_NULL; ++i) {
+            const double x = store.position[i][d];
+            if (route.side == 0 ? x < lo[d] + width : x >= hi[d] - width)
+                swap.export_index.push_back(static_cast<int>(i));
+        }
+        if (d < 0) wedge_exports(store, width, n_candidates, swap);
+        unsigned long n_send = swap.export_index.size(), n_recv = 0;
+        if (swap.to_self)
+            n_recv = n_send;
+        else
+            send_receive(&n_send, sizeof n_send, swap.send_rank, &n_recv, sizeof n_recv,
+                         swap.recv_rank, kCountTag, comm_, build_traffic_);
+        send_buffer_.clear();
+        pack_fields_shifted(store, fields, swap, stride);
+        recv_buffer_.resize(n_recv * stride);
+        if (swap.to_self && d < 0)
+            recv_buffer_.assign(send_buffer_.begin(), send_buffer_.end());  // a cut face: no message
+        else
             exchange(swap, send_buffer_.data(), send_buffer_.size(), recv_buffer_.data(),
                      recv_buffer_.size(), kDataTag, build_traffic_);
-            swap.import_first = store.size();
-            swap.import_count = n_recv;
-            store.resize_ghosts(store.n_ghost() + n_recv);
-            unpack_fields(store, fields, recv_buffer_.data(), n_recv, swap.import_first);
-            swaps_.push_back(std::move(swap));
-        }
+        swap.import_first = store.size();
+        swap.import_count = n_recv;
+        store.resize_ghosts(store.n_ghost() + n_recv);
+        unpack_fields(store, fields, recv_buffer_.data(), n_recv, swap.import_first);
+        swaps_.push_back(std::move(swap));
     }
     n_ghost_ = store.n_ghost();
 }
 
-void HaloExchange::build_wedge_images(ParticleStore& store, double width, unsigned fields,
-                                      std::size_t stride) {
+void HaloExchange::wedge_exports(const ParticleStore& store, double width, std::size_t n_candidates,
+                                 Swap& swap) const {
     // x and y are whole on this rank, so both cut faces are ours: copies from near the face
     // theta = 0 are turned by +1 wedge angle (they appear beyond the other face), copies from
-    // near theta = 2 pi / n by -1. Both faces export only particles present before either.
-    const std::size_t n_candidates = store.size();
-    for (int side = 0; side < 2; ++side) {
-        Swap swap;
-        swap.send_rank = swap.recv_rank = MPI_PROC_NULL;
-        swap.to_self = true;
-        swap.turns = side == 0 ? 1 : -1;
-        for (std::size_t i = 0; i < n_candidates; ++i) {
-            const Vec3& x = store.position[i];
-            const double gap = side == 0 ? Wedge::distance_to_first_face(x)
-                                         : wedge_.distance_to_second_face(x);
-            if (gap < width) swap.export_index.push_back(static_cast<int>(i));
-        }
-        const std::size_t n = swap.export_index.size();
-        send_buffer_.clear();
-        pack_fields_shifted(store, fields, swap, stride);
-        swap.import_first = store.size();
-        swap.import_count = n;
-        store.resize_ghosts(store.n_ghost() + n);
-        unpack_fields(store, fields, send_buffer_.data(), n, swap.import_first);
-        swaps_.push_back(std::move(swap));
+    // near theta = 2 pi / n by -1.
+    for (std::size_t i = 0; i < n_candidates; ++i) {
+        const Vec3& x = store.position[i];
+        const double gap = swap.turns == 1 ? Wedge::distance_to_first_face(x) : wedge_.distance_to_second_face(x);
+        if (gap < width) swap.export_index.push_back(static_cast<int>(i));
     }
 }
 
@@ -253,37 +239,56 @@ void HaloExchange::adopt_plan(const RankGrid& grid, const std::vector<SwapPlan>&
     wedge_ = grid.global().wedge;
     swaps_.clear();
     n_ghost_ = 0;
-    // The ranks of each swap as build() finds them, in its order.
-    std::size_t k = 0;
-    auto take = [&](Swap swap) {
-        if (k >= plans.size() || plans[k].to_self != swap.to_self)
-            throw std::logic_error("HaloExchange::adopt_plan: the swaps are not build()'s");
-        swap.shift = plans[k].shift;
-        swap.turns = plans[k].turns;
+    const std::vector<SwapRoute> routes = halo_routes(grid);
+    if (routes.size() != plans.size())
+        throw std::logic_error("HaloExchange::adopt_plan: the swaps are not the halo's routes");
+    for (std::size_t k = 0; k < routes.size(); ++k) {
+        const SwapRoute& route = routes[k];
+        if (plans[k].to_self != route.to_self || plans[k].turns != route.turns ||
+            plans[k].shift.x != route.shift.x || plans[k].shift.y != route.shift.y ||
+            plans[k].shift.z != route.shift.z)
+            throw std::logic_error("HaloExchange::adopt_plan: the swaps are not the halo's routes");
+        Swap swap;
+        swap.send_rank = route.send_rank;
+        swap.recv_rank = route.recv_rank;
+        swap.to_self = route.to_self;
+        swap.shift = route.shift;
+        swap.turns = route.turns;
         swap.import_first = plans[k].import_first;
         swap.import_count = plans[k].import_count;
         n_ghost_ += swap.import_count;
         swaps_.push_back(std::move(swap));
-        ++k;
-    };
+    }
+    exports_elsewhere_ = true;
+}
+
+std::vector<SwapRoute> halo_routes(const RankGrid& grid) {
+    std::vector<SwapRoute> routes;
+    const Vec3 len = grid.global().length();
     for (int d = 0; d < 3; ++d) {
-        if (d == 2 && wedge_.active())
+        if (d == 2 && grid.global().wedge.active())
             for (int side = 0; side < 2; ++side) {
-                Swap swap;
-                swap.send_rank = swap.recv_rank = MPI_PROC_NULL;
-                swap.to_self = true;
-                take(std::move(swap));
+                SwapRoute cut;
+                cut.axis = -1;
+                cut.side = side;
+                cut.to_self = true;
+                cut.turns = side == 0 ? 1 : -1;
+                cut.starts_phase = side == 0;
+                routes.push_back(cut);
             }
         for (int side = 0; side < 2; ++side) {
-            Swap swap;
-            swap.send_rank = grid.neighbour(d, side);
-            swap.recv_rank = grid.neighbour(d, 1 - side);
-            swap.to_self = swap.send_rank == grid.rank() && swap.recv_rank == grid.rank();
-            take(std::move(swap));
+            SwapRoute face;
+            face.axis = d;
+            face.side = side;
+            face.send_rank = grid.neighbour(d, side);
+            face.recv_rank = grid.neighbour(d, 1 - side);
+            face.to_self = face.send_rank == grid.rank() && face.recv_rank == grid.rank();
+            if (grid.wraps(d, side)) face.shift[d] = side == 0 ? len[d] : -len[d];
+            face.starts_phase = side == 0;
+            routes.push_back(face);
         }
     }
-    if (k != plans.size()) throw std::logic_error("HaloExchange::adopt_plan: the swaps are not build()'s");
-    exports_elsewhere_ = true;
+    return routes;
 }
 
 void HaloExchange::gather(std::vector<Vec3>& field, bool is_position) {

@@ -2,6 +2,8 @@
 // Ghost particles: which owned particles each neighbour needs, and refreshing them each step.
 #pragma once
 
+#include <mpi.h>
+
 #include <cstddef>
 #include <vector>
 
@@ -22,6 +24,25 @@ namespace emergent::decomp {
 /// between the y and z phases, two exchanges of a rank with itself across the cut faces, whose
 /// copies are rotated about z. Nothing here knows what the fields mean, except that positions
 /// are shifted and rotated, and velocities rotated, across those boundaries.
+/// One swap of the halo, as the one order of swaps has it (halo_routes): the face it exports
+/// from, where it sends and receives, and what it does to the copies.
+struct SwapRoute {
+    int axis = 0;   ///< the face's axis; -1: a wedge's cut face (side 0: theta = 0)
+    int side = 0;   ///< 0: the low face (copies go down), 1: the high face
+    int send_rank = MPI_PROC_NULL, recv_rank = MPI_PROC_NULL;
+    bool to_self = false;
+    Vec3 shift{0, 0, 0};  ///< across a periodic boundary: one box length
+    int turns = 0;        ///< wedge rotations of the copies (before the shift)
+    /// The first swap of a phase: it and the rest of its phase export from the particles
+    /// present now (an axis's two faces; the wedge's two cut faces).
+    bool starts_phase = false;
+};
+
+/// The halo's swaps in their order: per axis its two faces, -x, +x, -y, +y, -z, +z, and a
+/// wedge's two cut faces before z. Written once: the host's build, the back end's build
+/// (BackendListBuild) and adopt_plan() all follow it.
+std::vector<SwapRoute> halo_routes(const RankGrid& grid);
+
 class HaloExchange {
 public:
     /// Drops old ghosts, then imports ghosts for all particles within `width` of the local
@@ -101,8 +122,9 @@ private:
         std::size_t import_first = 0, import_count = 0;
     };
 
-    void build_wedge_images(ParticleStore& store, double width, unsigned fields,
-                            std::size_t stride);
+    /// A wedge's cut face (swap.turns: +1 the face theta = 0, -1 the other): the first
+    /// n_candidates particles within `width` of it, into swap.export_index.
+    void wedge_exports(const ParticleStore& store, double width, std::size_t n_candidates, Swap& swap) const;
     void pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
                              std::size_t stride);
     void exchange(const Swap& swap, const void* send, std::size_t send_bytes, void* recv,

@@ -375,36 +375,30 @@ void BackendListBuild::append_images(const exec::Target& target, exec::ParticleM
 void BackendListBuild::make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror,
                                    ParticleStore& store, const decomp::RankGrid& grid, double width,
                                    decomp::HaloExchange& halo, exec::BackendHalo& backend_halo) {
-    // HaloExchange::build's phases in its order (see there): per axis, both faces export from
-    // the particles present when the axis began; the wedge's cut faces come before z.
+    // The halo's routes in their order (decomp::halo_routes): both faces of a phase export from
+    // the particles present when the phase began.
     plans_.clear();
     swap_index_.clear();
     swap_count_.clear();
-    const Vec3 lo = grid.lo(), hi = grid.hi(), len = grid.global().length();
+    const Vec3 lo = grid.lo(), hi = grid.hi();
     const Wedge& wedge = grid.global().wedge;
-    for (int d = 0; d < 3; ++d) {
-        if (d == 2 && wedge.active()) {
-            const std::size_t n_candidates = store.size();
-            for (int side = 0; side < 2; ++side) {
-                build::NearFace near{mirror.array<Vec3>(kPosition), -1, side, 0, wedge, width, 0, nullptr};
-                append_images(target, mirror, store, near, n_candidates,
-                              {true, Vec3{0, 0, 0}, side == 0 ? 1 : -1, 0, 0}, wedge, grid.comm(),
-                              MPI_PROC_NULL, MPI_PROC_NULL);
-            }
+    std::size_t n_candidates = 0;
+    for (const decomp::SwapRoute& route : decomp::halo_routes(grid)) {
+        if (route.starts_phase) n_candidates = store.size();
+        const decomp::HaloExchange::SwapPlan plan{route.to_self, route.shift, route.turns, 0, 0};
+        const int d = route.axis, side = route.side;
+        if (d < 0) {  // a wedge's cut face
+            build::NearFace near{mirror.array<Vec3>(kPosition), -1, side, 0, wedge, width, 0, nullptr};
+            append_images(target, mirror, store, near, n_candidates, plan, wedge, grid.comm(), MPI_PROC_NULL,
+                          MPI_PROC_NULL);
+            continue;
         }
-        const std::size_t n_candidates = store.size();
-        for (int side = 0; side < 2; ++side) {
-            const int to = grid.neighbour(d, side), from = grid.neighbour(d, 1 - side);
-            decomp::HaloExchange::SwapPlan plan{false, Vec3{0, 0, 0}, 0, 0, 0};
-            plan.to_self = to == grid.rank() && from == grid.rank();
-            if (grid.wraps(d, side)) plan.shift[d] = side == 0 ? len[d] : -len[d];
-            // A face without a neighbour exports nothing: its flags are all 0.
-            const bool open = to != MPI_PROC_NULL;
-            const Real edge = !open ? (side == 0 ? -INFINITY : INFINITY)
-                                    : (side == 0 ? lo[d] + width : hi[d] - width);
-            build::NearFace near{mirror.array<Vec3>(kPosition), d, side, edge, wedge, 0, 0, nullptr};
-            append_images(target, mirror, store, near, n_candidates, plan, wedge, grid.comm(), to, from);
-        }
+        // A face without a neighbour exports nothing: its flags are all 0.
+        const bool open = route.send_rank != MPI_PROC_NULL;
+        const Real edge = !open ? (side == 0 ? -INFINITY : INFINITY) : (side == 0 ? lo[d] + width : hi[d] - width);
+        build::NearFace near{mirror.array<Vec3>(kPosition), d, side, edge, wedge, 0, 0, nullptr};
+        append_images(target, mirror, store, near, n_candidates, plan, wedge, grid.comm(), route.send_rank,
+                      route.recv_rank);
     }
     halo.adopt_plan(grid, plans_);
     backend_halo.place_on_backend(swap_index_, swap_count_);

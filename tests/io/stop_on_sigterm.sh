@@ -18,7 +18,10 @@ mpirun=$2
 here=$(cd "$(dirname "$0")" && pwd)
 dir=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$dir"' EXIT
-eq=1000 steps=5000  # 10 vibration cycles: the signal lands mid-run, after step eq + 500
+# 60 vibration cycles: the signal lands mid-run, after step eq + 500, with seconds of the run
+# left (5000 steps took ~0.5 s on a quiet machine, and the signal, 0-0.35 s late, missed the run
+# in 2 of 3 tries there: exit 143).
+eq=1000 steps=30000
 common=(vibrated-sawtooth --preset tiny --set equilibration_steps=$eq --set steps=$steps
         --set sample_every=50 --set progress_interval=0 --set output.snapshot_seconds=0)
 mpi=("$mpirun" -q --allow-run-as-root --oversubscribe -np 2)
