@@ -122,7 +122,9 @@ print(f"ok: array tasks 1 and 2 ran seeds {seeds[1]} and {seeds[2]} into seed1/ 
 PY
 
 # 3. The chain. The uninterrupted reference runs on 2 ranks too (bitwise per rank count).
-steps=60000  # several seconds on 2 tasks: the signal lands mid-run
+# Seconds on 2 tasks, so the signals land mid-run: 60000 steps ended in ~2 s on a quiet machine,
+# before the requeue test's signal (1 s after the run's first file) in 2 of 3 tries.
+steps=200000
 run_args=(lj-fluid --set n_cells=6 --set equilibration_steps=0 --set steps=$steps --set sample_every=500
           --set output.every=0 --set progress_interval=0)
 mpirun -q --oversubscribe -np 2 "$exe" run "${run_args[@]}" -o "$work/straight" >/dev/null
