@@ -79,6 +79,8 @@ for scene in "${scenes[@]}"; do
     status=2
     continue
   fi
+  # A finished run keeps no checkpoint: it was only there to continue a stopped one.
+  rm -f "$dir/checkpoint.h5"
   scripts/check_phenomenon "$dir" >"$dir/check.log" 2>&1
   rc=$?
   cat "$dir/check.log"
