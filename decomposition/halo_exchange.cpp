@@ -145,6 +145,16 @@ void HaloExchange::end_refresh() {
     staged_position_ = staged_velocity_ = nullptr;
 }
 
+HaloExchange::Swap HaloExchange::on_route(const SwapRoute& route) {
+    Swap swap;
+    swap.send_rank = route.send_rank;
+    swap.recv_rank = route.recv_rank;
+    swap.to_self = route.to_self;
+    swap.shift = route.shift;
+    swap.turns = route.turns;
+    return swap;
+}
+
 void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double width,
                          unsigned fields) {
     // A refresh left in flight (a run stopped between its start and the forces, its last good
@@ -163,12 +173,7 @@ void HaloExchange::build(ParticleStore& store, const RankGrid& grid, double widt
         // Both faces of a phase export from the particles present before it began, so a ghost
         // imported through -d is not sent straight back through +d.
         if (route.starts_phase) n_candidates = store.size();
-        Swap swap;
-        swap.send_rank = route.send_rank;
-        swap.recv_rank = route.recv_rank;
-        swap.to_self = route.to_self;
-        swap.shift = route.shift;
-        swap.turns = route.turns;
+        Swap swap = on_route(route);
         const int d = route.axis;
         for (std::size_t i = 0; i < n_candidates && swap.send_rank != MPI_PROC_NULL; ++i) {
             const double x = store.position[i][d];
@@ -248,12 +253,7 @@ void HaloExchange::adopt_plan(const RankGrid& grid, const std::vector<SwapPlan>&
             plans[k].shift.x != route.shift.x || plans[k].shift.y != route.shift.y ||
             plans[k].shift.z != route.shift.z)
             throw std::logic_error("HaloExchange::adopt_plan: the swaps are not the halo's routes");
-        Swap swap;
-        swap.send_rank = route.send_rank;
-        swap.recv_rank = route.recv_rank;
-        swap.to_self = route.to_self;
-        swap.shift = route.shift;
-        swap.turns = route.turns;
+        Swap swap = on_route(route);
         swap.import_first = plans[k].import_first;
         swap.import_count = plans[k].import_count;
         n_ghost_ += swap.import_count;

@@ -122,6 +122,8 @@ private:
         std::size_t import_first = 0, import_count = 0;
     };
 
+    /// A swap along `route`, its exports and imports still empty.
+    static Swap on_route(const SwapRoute& route);
     /// A wedge's cut face (swap.turns: +1 the face theta = 0, -1 the other): the first
     /// n_candidates particles within `width` of it, into swap.export_index.
     void wedge_exports(const ParticleStore& store, double width, std::size_t n_candidates, Swap& swap) const;
