@@ -179,29 +179,45 @@ T exclusive_scan(Cuda backend, const T* in, T* out, std::size_t n) {
     return last_out + last_in;
 }
 
+/// See the host version: the scan queued on the stream, nothing read back.
+template <class T>
+void exclusive_scan_queued(Cuda backend, const T* in, T* out, std::size_t n) {
+    if (n == 0) return;
+    const ProfiledCall profiled("scan", functor_name<T>());
+    const int items = cuda_detail::item_count(n);
+    std::size_t temp = 0;
+    EMERGENT_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, temp, in, out, items,
+                                                      backend.stream));
+    EMERGENT_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(CudaScratch::instance().get(temp), temp, in,
+                                                      out, items, backend.stream));
+}
+
 /// See the host version; keys and values are device arrays, sorted in place (a stable LSD
 /// radix sort through alternate buffers in the scratch memory). Returns with the copy back
 /// still queued on the backend's stream: every later use of the scratch memory must be on that
 /// stream (the engine uses one stream per process).
-inline void sort_pairs(Cuda backend, std::uint32_t* keys, std::uint32_t* values, std::size_t n,
-                       int key_bits = 32) {
+template <class Key>
+void sort_pairs(Cuda backend, Key* keys, std::uint32_t* values, std::size_t n,
+                int key_bits = 8 * sizeof(Key)) {
     if (n < 2) return;
-    const ProfiledCall profiled("sort", functor_name<std::uint32_t>());
+    const ProfiledCall profiled("sort", functor_name<Key>());
     const int items = cuda_detail::item_count(n);
-    const std::size_t array = (n * sizeof(std::uint32_t) + 255) / 256 * 256;
+    const std::size_t key_array = (n * sizeof(Key) + 255) / 256 * 256;
+    const std::size_t value_array = (n * sizeof(std::uint32_t) + 255) / 256 * 256;
     std::size_t temp = 0;
-    cub::DoubleBuffer<std::uint32_t> k(keys, nullptr), v(values, nullptr);
+    cub::DoubleBuffer<Key> k(keys, nullptr);
+    cub::DoubleBuffer<std::uint32_t> v(values, nullptr);
     EMERGENT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp, k, v, items, 0,
                                                         key_bits, backend.stream));
-    char* base = static_cast<char*>(CudaScratch::instance().get(2 * array + temp));
-    k = cub::DoubleBuffer<std::uint32_t>(keys, reinterpret_cast<std::uint32_t*>(base));
-    v = cub::DoubleBuffer<std::uint32_t>(values, reinterpret_cast<std::uint32_t*>(base + array));
-    EMERGENT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(base + 2 * array, temp, k, v,
+    char* base = static_cast<char*>(CudaScratch::instance().get(key_array + value_array + temp));
+    k = cub::DoubleBuffer<Key>(keys, reinterpret_cast<Key*>(base));
+    v = cub::DoubleBuffer<std::uint32_t>(values, reinterpret_cast<std::uint32_t*>(base + key_array));
+    EMERGENT_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(base + key_array + value_array, temp, k, v,
                                                         items, 0, key_bits,
                                                         backend.stream));
     // The sort may end in the alternate buffers: copy back so the caller's arrays hold it.
     if (k.Current() != keys)
-        EMERGENT_CUDA_CHECK(cudaMemcpyAsync(keys, k.Current(), n * sizeof(std::uint32_t),
+        EMERGENT_CUDA_CHECK(cudaMemcpyAsync(keys, k.Current(), n * sizeof(Key),
                                             cudaMemcpyDeviceToDevice, backend.stream));
     if (v.Current() != values)
         EMERGENT_CUDA_CHECK(cudaMemcpyAsync(values, v.Current(), n * sizeof(std::uint32_t),

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <numeric>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "emergent/macros.hpp"
@@ -137,13 +138,23 @@ T exclusive_scan(Host, const T* in, T* out, std::size_t n) {
     return running;
 }
 
+/// The same scan with no total coming back: the host does not wait for it (on a device it is
+/// queued like a loop), for a scan whose total the host knows already or reads later with
+/// other results. in and out may be the same array.
+template <class T>
+void exclusive_scan_queued(Host, const T* in, T* out, std::size_t n) {
+    exclusive_scan(Host{}, in, out, n);
+}
+
 /// Sorts the pairs (keys[i], values[i]) by key, stably (equal keys keep their order), in
 /// place; keys must be below 2^key_bits (fewer bits, fewer radix passes on CUDA). Both back ends
-/// give the same order.
-inline void sort_pairs(Host, std::uint32_t* keys, std::uint32_t* values, std::size_t n,
-                       int key_bits = 32) {
+/// give the same order. Keys of 32 or 64 bits (a cell and an id in one key: one sort, not two).
+template <class Key>
+void sort_pairs(Host, Key* keys, std::uint32_t* values, std::size_t n, int key_bits = 8 * sizeof(Key)) {
+    static_assert(std::is_same_v<Key, std::uint32_t> || std::is_same_v<Key, std::uint64_t>,
+                  "sort_pairs: 32- or 64-bit unsigned keys");
     // Keys beyond key_bits would sort differently on CUDA (its radix passes ignore those bits).
-    if (key_bits < 32)
+    if (key_bits < static_cast<int>(8 * sizeof(Key)))
         for (std::size_t i = 0; i < n; ++i)
             if (keys[i] >> key_bits)
                 throw std::invalid_argument("sort_pairs: a key has more than key_bits bits");
@@ -151,7 +162,8 @@ inline void sort_pairs(Host, std::uint32_t* keys, std::uint32_t* values, std::si
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(),
                      [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
-    std::vector<std::uint32_t> k(n), v(n);
+    std::vector<Key> k(n);
+    std::vector<std::uint32_t> v(n);
     for (std::size_t i = 0; i < n; ++i) {
         k[i] = keys[order[i]];
         v[i] = values[order[i]];
@@ -267,9 +279,25 @@ T exclusive_scan(const Target& target, const T* in, T* out, std::size_t n) {
     return exclusive_scan(Host{}, in, out, n);
 }
 
+/// See the host version: no total comes back (nothing is read back).
+template <class T>
+void exclusive_scan_queued(const Target& target, const T* in, T* out, std::size_t n) {
+    count_pass();
+    if (target.device) {
+#if defined(__CUDACC__)
+        exclusive_scan_queued(on_device(target), in, out, n);
+        return;
+#else
+        refuse_device_loop("exclusive_scan_queued");
+#endif
+    }
+    exclusive_scan_queued(Host{}, in, out, n);
+}
+
 /// See the host version; keys and values are arrays in the target's memory.
-inline void sort_pairs(const Target& target, std::uint32_t* keys, std::uint32_t* values,
-                       std::size_t n, int key_bits = 32) {
+template <class Key>
+void sort_pairs(const Target& target, Key* keys, std::uint32_t* values, std::size_t n,
+                int key_bits = 8 * sizeof(Key)) {
     count_pass();
     if (target.device) {
 #if defined(__CUDACC__)

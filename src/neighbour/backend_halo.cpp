@@ -49,6 +49,16 @@ void BackendHalo::place_on_backend(std::vector<const int*> index, std::vector<st
     refresh_ = Refresh::undecided;
 }
 
+void BackendHalo::place_roots(const int* root, const Vec3* shift, std::size_t n_owned, std::size_t n_ghost) {
+    swap_index_.clear();
+    swap_count_.clear();
+    roots_ = root;
+    shifts_ = shift;
+    n_owned_ = n_owned;
+    n_ghost_ = n_ghost;
+    refresh_ = Refresh::from_roots;
+}
+
 bool BackendHalo::from_roots(const decomp::HaloExchange& halo) {
     // Faces -x, +x, -y, +y, -z, +z: the two swaps of an axis never re-export each other's
     // ghosts, so a ghost's way passes each axis at most once, and each component of its

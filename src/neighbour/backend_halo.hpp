@@ -26,6 +26,10 @@ public:
     /// After a build on the back end: swap k's export indices are count[k] ints at index[k],
     /// already in the back end's memory.
     void place_on_backend(std::vector<const int*> index, std::vector<std::size_t> count);
+    /// After a build that made the ghosts from their owned roots directly (one rank, no wedge:
+    /// BackendListBuild): ghost g is root[g]'s image shifted by shift[g], both on the back end;
+    /// the plan is refreshed from them in one pass, with nothing left to trace.
+    void place_roots(const int* root, const Vec3* shift, std::size_t n_owned, std::size_t n_ghost);
     /// Ghost values of `field` (the back end's array) from their owners, along the plan:
     /// positions (shifted across periodic boundaries) or velocities (never shifted); both
     /// rotated across wedge faces. Uses the mirror's scratch slots scratch_slot to

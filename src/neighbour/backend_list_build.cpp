@@ -39,6 +39,8 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     const exec::ParticleMirror::DeferredResize particles_sized(mirror, store);
     std::optional<exec::ParticleMirror::DeferredResize> bodies_sized;
     if (bodies) bodies_sized.emplace(*bodies->mirror, *bodies->store);
+    if (!bodies && one_domain(grid))
+        return build_one_domain(target, mirror, store, grid, cells, ghost_width, list_range, halo, backend_halo);
     // The first sort is by id as a 32-bit key; larger ids (never made by the scenes here, but
     // allowed) leave the build to the host, on every rank.
     double largest_id = exec::transform_max(target, store.n_owned(), 0.0,
@@ -91,6 +93,120 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     make_ghosts(target, mirror, store, grid, ghost_width, halo, backend_halo);
     list(target, mirror, store, cells, list_range);
     return true;
+}
+
+bool BackendListBuild::one_domain(const decomp::RankGrid& grid) {
+    if (grid.size() != 1 || grid.global().wedge.active()) return false;
+    for (const decomp::SwapRoute& route : decomp::halo_routes(grid))
+        if (route.axis < 0 || route.turns != 0 ||
+            !(route.to_self || (route.send_rank == MPI_PROC_NULL && route.recv_rank == MPI_PROC_NULL)))
+            return false;
+    return true;
+}
+
+bool BackendListBuild::build_one_domain(const exec::Target& target, exec::ParticleMirror& mirror,
+                                        ParticleStore& store, const decomp::RankGrid& grid, const CellList& cells,
+                                        double ghost_width, double list_range, decomp::HaloExchange& halo,
+                                        exec::BackendHalo& backend_halo) {
+    mirror.resize_on_backend(store, store.n_owned(), 0);
+    const std::size_t n = store.n_owned();
+    const auto started = std::chrono::steady_clock::now();
+    int* fault = reinterpret_cast<int*>(buffer(mirror, kFaults, n));
+    auto* key = static_cast<std::uint64_t*>(mirror.scratch(slot_ + kWideKeys, n * sizeof(std::uint64_t)));
+    std::uint32_t* order = buffer(mirror, kValues, n);
+    build::ComeHome home{mirror.array<Vec3>(kPosition), mirror.array<Vec3>(kVelocity),
+                         mirror.array<Int3>(kImage), grid.global().wedge, grid.lo(), grid.hi(),
+                         grid.global().length(), {0, 0, 0}, fault};
+    for (int d = 0; d < 3; ++d) home.periodic[d] = grid.neighbour(d, 0) != MPI_PROC_NULL;
+    exec::for_each(target, n,
+                   build::ComeHomeAndKey{home, mirror.array<std::int64_t>(kId), cells.index(), key, order});
+    migration_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    exec::sort_pairs(target, key, order, n, 32 + key_bits(static_cast<std::size_t>(cells.n_cells())));
+    gather_owned(target, mirror, store, reinterpret_cast<const int*>(order), n);
+    const build::ImageCounts status =
+        make_images(target, mirror, store, grid, ghost_width, halo, backend_halo, fault);
+    // An id no key holds: the host builds (it repeats this migration and sort to the same end,
+    // and orders by the whole id).
+    if (status.ids_outside) return false;
+    if (status.first_fault != ~std::uint64_t{0}) {
+        // The first fault as the host's migration finds it (describe_fault); its particle has
+        // moved in the sort since.
+        const int code = static_cast<int>(status.first_fault >> 32);
+        const auto before = static_cast<std::uint32_t>(status.first_fault & 0xffffffffu);
+        const std::size_t i = exec::first_index(target, n, build::WentTo{order, before});
+        const int kind = (code - 1) % 3 + 1;
+        name_fault(target, mirror, i, (code - 1) / 3,
+                   kind == 1 ? decomp::kLeftThroughClosedFace : decomp::kMovedMoreThanABox);
+        return true;
+    }
+    list(target, mirror, store, cells, list_range);
+    return true;
+}
+
+build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exec::ParticleMirror& mirror,
+                                                 ParticleStore& store, const decomp::RankGrid& grid, double width,
+                                                 decomp::HaloExchange& halo, exec::BackendHalo& backend_halo,
+                                                 const int* fault) {
+    // The kinds in the swaps' order: a phase's faces each image what was there when it began.
+    const std::vector<decomp::SwapRoute> routes = decomp::halo_routes(grid);
+    build::ImageKinds kinds;
+    const Vec3 lo = grid.lo(), hi = grid.hi();
+    for (int d = 0; d < 3; ++d) {
+        kinds.edge[d][0] = lo[d] + width;
+        kinds.edge[d][1] = hi[d] - width;
+    }
+    std::vector<int> kind_from(routes.size() + 1, 0);  // route k makes kinds [from[k], from[k + 1])
+    signed char side[build::kMaxImageKinds + 1][3] = {{-1, -1, -1}};  // 0: the owned particles
+    Vec3 shift[build::kMaxImageKinds + 1] = {};
+    int made = 1, present = 1;
+    for (std::size_t k = 0; k < routes.size(); ++k) {
+        const decomp::SwapRoute& route = routes[k];
+        if (route.starts_phase) present = made;
+        kind_from[k] = made - 1;
+        if (route.to_self)
+            for (int p = 0; p < present; ++p, ++made) {
+                if (made > build::kMaxImageKinds)
+                    throw std::logic_error("BackendListBuild: more kinds of image than a domain has");
+                for (int d = 0; d < 3; ++d) side[made][d] = side[p][d];
+                side[made][route.axis] = static_cast<signed char>(route.side);
+                shift[made] = shift[p] + route.shift;
+            }
+    }
+    kind_from[routes.size()] = made - 1;
+    kinds.n = made - 1;
+    for (int q = 0; q < kinds.n; ++q) {
+        for (int d = 0; d < 3; ++d) kinds.side[q][d] = side[q + 1][d];
+        kinds.shift[q] = shift[q + 1];
+    }
+    const std::size_t n = store.n_owned(), rows = n + 1;
+    std::uint32_t* flag = buffer(mirror, kFlags, static_cast<std::size_t>(kinds.n) * rows);
+    const build::ImageCounts counts = exec::transform_sum<build::ImageCounts>(
+        target, rows, build::FlagImages{mirror.array<Vec3>(kPosition), kinds, n, flag, fault});
+    if (counts.ids_outside || counts.first_fault != ~std::uint64_t{0}) return counts;
+    exec::exclusive_scan_queued(target, flag, flag, static_cast<std::size_t>(kinds.n) * rows);
+    std::vector<std::size_t> before(kinds.n + 1, 0);
+    for (int q = 0; q < kinds.n; ++q) before[q + 1] = before[q] + counts.count[q];
+    const std::size_t n_ghost = before[kinds.n];
+    mirror.resize_on_backend(store, n, n_ghost);
+    int* root = reinterpret_cast<int*>(buffer(mirror, kRoots, n_ghost));
+    Vec3* total_shift = static_cast<Vec3*>(mirror.scratch(slot_ + kShifts, n_ghost * sizeof(Vec3)));
+    build::FieldGather copies;
+    mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
+        if (field == kForce || field == kPosition) return;
+        std::uint32_t* a = static_cast<std::uint32_t*>(data);
+        add_field(copies, a, a, static_cast<unsigned>(bytes / 4));
+    });
+    exec::for_each(target, n,
+                   build::WriteImages{copies, mirror.array<Vec3>(kPosition), kinds, n, flag, root, total_shift});
+    std::vector<decomp::HaloExchange::SwapPlan> plans;
+    for (std::size_t k = 0; k < routes.size(); ++k) {
+        const decomp::SwapRoute& route = routes[k];
+        const std::size_t first = before[kind_from[k]], last = before[kind_from[k + 1]];
+        plans.push_back({route.to_self, route.shift, route.turns, n + first, last - first});
+    }
+    halo.adopt_plan(grid, plans);
+    backend_halo.place_roots(root, total_shift, n, n_ghost);
+    return counts;
 }
 
 void BackendListBuild::describe_fault(const exec::Target& target, exec::ParticleMirror& mirror,
@@ -377,6 +493,10 @@ void BackendListBuild::make_ghosts(const exec::Target& target, exec::ParticleMir
                                    decomp::HaloExchange& halo, exec::BackendHalo& backend_halo) {
     // The halo's routes in their order (decomp::halo_routes): both faces of a phase export from
     // the particles present when the phase began.
+    if (one_domain(grid)) {
+        make_images(target, mirror, store, grid, width, halo, backend_halo, nullptr);
+        return;
+    }
     plans_.clear();
     swap_index_.clear();
     swap_count_.clear();

@@ -139,6 +139,23 @@ private:
     void make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                      const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
                      exec::BackendHalo& backend_halo);
+    /// Whether the domain is its own neighbour on every open face (one rank, no wedge): then
+    /// one pass brings particles home and keys them, one sort orders them, and every ghost is
+    /// made from its owner in one pass (make_images).
+    static bool one_domain(const decomp::RankGrid& grid);
+    /// The build of one domain without bodies: 12 passes over particles, 2 read-backs (the
+    /// images' counts with the migration's faults, the list's length).
+    bool build_one_domain(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                          const decomp::RankGrid& grid, const CellList& cells, double ghost_width,
+                          double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo);
+    /// One domain's ghosts, every kind of image at once (build::ImageKinds): a pass counting
+    /// them (which reads back, with the counts, the faults of the migration before it, from
+    /// `fault` where given), a scan, a pass writing them with their roots; the halo's plan and
+    /// the refreshes' roots placed. Writes nothing where a fault or an id outside the keys was
+    /// found (returned).
+    build::ImageCounts make_images(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
+                                   const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
+                                   exec::BackendHalo& backend_halo, const int* fault);
     /// Appends as ghosts the images of the candidates flagged by `near` (over the n_candidates
     /// particles present before the swap's phase): the next swap of the plan, copied in place
     /// where it is this rank's own, else sent to rank `to` while `from`'s come in.
@@ -153,7 +170,9 @@ private:
     }
     enum Buffer : std::size_t { kKeys, kValues, kFlags, kGather, kCellStart, kOffsets, kNeighbours,
                                 kReference, kFaults, kLeave1, kKeep, kSend, kReceive, kIndex0, kIndex1,
-                                kConstituentFirst, kConstituentIndex, kNewOfOld, kSwapIndex0 };  // then one per swap (up to 8)
+                                kConstituentFirst, kConstituentIndex, kNewOfOld,
+                                kSwapIndex0,  // then one per swap (up to 8)
+                                kRoots = kSwapIndex0 + 8, kShifts, kWideKeys };
 
     std::size_t slot_;
     const double* range_table_ = nullptr;

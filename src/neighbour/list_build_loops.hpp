@@ -310,6 +310,136 @@ struct GatherFields {
     }
 };
 
+/// ComeHome's fault code for an id that no sort key holds (negative, or 2^32 or more): the
+/// build is left to the host.
+constexpr int kIdOutsideKeys = 1 << 20;
+
+/// One rank's migration (ComeHome) and the sort key of where it leaves the particle, in one
+/// pass: key[i] = cell << 32 | id (one sort orders by cell, and by id within a cell: the
+/// host's order), value[i] = i. A particle with a fault keys into the nearest cell, so that the
+/// build goes on safely to where the fault is read (with the ghosts' counts); one with an id
+/// no key holds is marked kIdOutsideKeys.
+struct ComeHomeAndKey {
+    ComeHome home;
+    const std::int64_t* id;
+    CellIndex cells;
+    std::uint64_t* key;
+    std::uint32_t* value;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        home(i);
+        int c = cells.cell_of(home.x[i]);
+        const int n_cells = cells.n.x * cells.n.y * cells.n.z;
+        c = c < 0 ? 0 : (c >= n_cells ? n_cells - 1 : c);
+        const std::int64_t d = id[i];
+        if (d < 0 || d > std::int64_t{0xffffffff}) home.fault[i] = kIdOutsideKeys;
+        key[i] = (static_cast<std::uint64_t>(c) << 32) | static_cast<std::uint32_t>(d);
+        value[i] = static_cast<std::uint32_t>(i);
+    }
+};
+
+/// The most kinds of periodic image one domain gives its particles: 3^3 - 1 (faces, edges,
+/// corners).
+constexpr int kMaxImageKinds = 26;
+
+/// The kinds of image of a domain that is its own neighbour on every open face (one rank, no
+/// wedge), in the order the halo's swaps make them (decomp::halo_routes, each phase exporting
+/// what was present when it began): kind q is made from a particle near face (d, side[q][d])
+/// of every axis d where side[q][d] >= 0, at its position plus shift[q]. Within a kind the
+/// images follow their owners' order, so ghost slot of (kind q, particle i) is the count of
+/// images of kinds before q plus those of kind q from particles before i: the swaps' order.
+struct ImageKinds {
+    int n = 0;
+    signed char side[kMaxImageKinds][3];
+    Vec3 shift[kMaxImageKinds];
+    Real edge[3][2];  ///< near face (d, 0): x[d] < edge[d][0]; (d, 1): x[d] >= edge[d][1]
+    EMERGENT_HD bool near(const Vec3& x, int q) const {
+        for (int d = 0; d < 3; ++d) {
+            const int s = side[q][d];
+            if (s == 0 && !(x[d] < edge[d][0])) return false;
+            if (s == 1 && !(x[d] >= edge[d][1])) return false;
+        }
+        return true;
+    }
+};
+
+/// Images counted by kind, with what the migration before found: the first fault (its code
+/// above the particle's index: the smallest is the host's first) and whether an id lay outside
+/// the keys. A sum of these (transform_sum) is the counts' sum, the faults' minimum.
+struct ImageCounts {
+    std::uint32_t count[kMaxImageKinds] = {};
+    std::uint64_t first_fault = ~std::uint64_t{0};
+    std::uint32_t ids_outside = 0;
+    EMERGENT_HD ImageCounts& operator+=(const ImageCounts& o) {
+        for (int q = 0; q < kMaxImageKinds; ++q) count[q] += o.count[q];
+        first_fault = o.first_fault < first_fault ? o.first_fault : first_fault;
+        ids_outside |= o.ids_outside;
+        return *this;
+    }
+};
+
+/// flag[q * (n + 1) + i] = 1 where owned particle i has an image of kind q (and 0 at i = n, so
+/// one scan over all kinds gives every image its ghost slot); returns i's counts and its fault
+/// (fault null: none to report).
+struct FlagImages {
+    const Vec3* x;
+    ImageKinds kinds;
+    std::size_t n;
+    std::uint32_t* flag;
+    const int* fault;
+    EMERGENT_HD ImageCounts operator()(std::size_t i) const {
+        ImageCounts c;
+        for (int q = 0; q < kinds.n; ++q) {
+            const std::uint32_t f = i < n && kinds.near(x[i], q) ? 1u : 0u;
+            flag[q * (n + 1) + i] = f;
+            c.count[q] = f;
+        }
+        if (i < n && fault && fault[i]) {
+            if (fault[i] == kIdOutsideKeys)
+                c.ids_outside = 1;
+            else
+                c.first_fault = (static_cast<std::uint64_t>(fault[i]) << 32) | i;
+        }
+        return c;
+    }
+};
+
+/// After the scan of FlagImages' flags (slot): owned particle i's images written at their
+/// ghost slots n + slot, every field copied but forces and positions (velocities as they are:
+/// no wedge turns them), positions shifted; each ghost's root and total shift kept for the
+/// refreshes (decomp::GhostFromRoot): the swaps' images, bit for bit.
+struct WriteImages {
+    FieldGather fields;  ///< from == to: the store's arrays
+    Vec3* x;
+    ImageKinds kinds;
+    std::size_t n;
+    const std::uint32_t* slot;
+    int* root;
+    Vec3* total_shift;
+    EMERGENT_HD void operator()(std::size_t i) const {
+        for (int q = 0; q < kinds.n; ++q) {
+            const std::size_t at = q * (n + 1) + i;
+            if (slot[at + 1] == slot[at]) continue;
+            const std::size_t g = slot[at], j = n + g;
+            for (int f = 0; f < fields.n_fields; ++f) {
+                const unsigned words = fields.words[f];
+                const std::uint32_t* a = fields.from[f] + i * words;
+                std::uint32_t* b = fields.to[f] + j * words;
+                for (unsigned w = 0; w < words; ++w) b[w] = a[w];
+            }
+            x[j] = x[i] + kinds.shift[q];
+            root[g] = static_cast<int>(i);
+            total_shift[g] = kinds.shift[q];
+        }
+    }
+};
+
+/// order[k] == i: where particle i (before a sort) went.
+struct WentTo {
+    const std::uint32_t* order;
+    std::uint32_t i;
+    EMERGENT_HD bool operator()(std::size_t k) const { return order[k] == i; }
+};
+
 /// flag[i] = 1 where particle i lies within the ghost width of a face, for i < n; flag[n] = 0
 /// (the scan that follows then ends in the count). The face: (axis, side) of the domain, or
 /// with axis -1 a cut face of the wedge (side 0 theta = 0, side 1 theta = 2 pi / n).

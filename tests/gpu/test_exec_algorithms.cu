@@ -94,6 +94,25 @@ TEST(CudaExecution, SortPairsGivesTheHostOrder) {
     }
 }
 
+TEST(CudaExecution, WideKeySortAndQueuedScanGiveTheHostResults) {
+    SKIP_WITHOUT_DEVICE();
+    gpu::select_device();
+    std::vector<std::uint64_t> keys;
+    std::vector<std::uint32_t> values;
+    fixtures::cell_and_id_keys(500001, 18, 17, keys, values);
+    auto dk = on_device(keys);
+    auto dv = on_device(values);
+    exec::sort_pairs(exec::Cuda{}, dk.data(), dv.data(), keys.size(), 32 + 18);
+    exec::sort_pairs(exec::Host{}, keys.data(), values.data(), keys.size(), 32 + 18);
+    EXPECT_EQ(on_host(dk), keys);
+    EXPECT_EQ(on_host(dv), values);
+    const std::uint64_t read_before = exec::transfers().scalars;
+    exec::exclusive_scan_queued(exec::Cuda{}, dv.data(), dv.data(), values.size());
+    EXPECT_EQ(exec::transfers().scalars, read_before) << "a queued scan reads nothing back";
+    exec::exclusive_scan(exec::Host{}, values.data(), values.data(), values.size());
+    EXPECT_EQ(on_host(dv), values);
+}
+
 namespace {
 struct Big {
     const double* v;

@@ -100,6 +100,42 @@ TEST(Execution, SortPairsIsStable) {
     }
 }
 
+TEST(Execution, SortPairsOfWideKeysOrdersByCellThenId) {
+    // A list build's one sort: 64-bit keys, a cell above an id. Against a plain stable sort of
+    // (cell, id) pairs; the ids are distinct, so the order is the only one.
+    std::vector<std::uint64_t> keys;
+    std::vector<std::uint32_t> values;
+    fixtures::cell_and_id_keys(20000, 9, 5, keys, values);
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> reference;
+    for (std::size_t i = 0; i < keys.size(); ++i) reference.push_back({keys[i], values[i]});
+    std::stable_sort(reference.begin(), reference.end(), [](const auto& a, const auto& b) {
+        const std::uint64_t ca = a.first >> 32, cb = b.first >> 32;
+        return ca != cb ? ca < cb : (a.first & 0xffffffffu) < (b.first & 0xffffffffu);
+    });
+    exec::sort_pairs(exec::Host{}, keys.data(), values.data(), keys.size(), 32 + 9);
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        ASSERT_EQ(keys[i], reference[i].first) << i;
+        ASSERT_EQ(values[i], reference[i].second) << i;
+    }
+    // A cell beyond the bits said is refused, as for 32-bit keys.
+    std::vector<std::uint64_t> wide{std::uint64_t{1} << 41, 1};
+    std::vector<std::uint32_t> two{0, 1};
+    EXPECT_THROW(exec::sort_pairs(exec::Host{}, wide.data(), two.data(), 2, 41), std::invalid_argument);
+}
+
+TEST(Execution, QueuedScanIsTheScanAndReadsNothingBack) {
+    std::vector<std::uint32_t> keys, values;
+    fixtures::repeated_keys(10001, 4, 3, keys, values);
+    std::vector<std::uint32_t> expected(keys.size()), got = keys;
+    exec::exclusive_scan(exec::Host{}, keys.data(), expected.data(), keys.size());
+    const exec::Target checking{false, true, nullptr};
+    const exec::Transfers before = exec::transfers();
+    exec::exclusive_scan_queued(checking, got.data(), got.data(), got.size());
+    EXPECT_EQ(got, expected);
+    EXPECT_EQ(exec::transfers().scalars, before.scalars);
+    EXPECT_EQ(exec::transfers().passes, before.passes + 1);
+}
+
 TEST(Execution, HostMovesNothing) {
     const exec::Transfers before = exec::transfers();
     const auto v = fixtures::spread_values(100, 7);
