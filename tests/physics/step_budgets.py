@@ -14,7 +14,7 @@ bringing particles home and keying them, one sort, one gather; every kind of per
 counted, scanned and written in three passes; the list's cells keyed, sorted and started, its
 rows counted, scanned and filled; back come the images' counts with the migration's faults, and
 the list's length). Every scene without a wedge or bodies builds so on one rank. The other rows
-are what each scene takes today (2026-12-07, benchmarks/logs/step_ledger_2026-12-07.log), not
+are what each scene takes today (2026-12-07, benchmarks/logs/step_ledger_2026-12-07_one_domain.log), not
 targets: no plain step of any scene should move an array on one rank.
 
 usage: step_budgets.py EMERGENT MPIRUN"""
@@ -36,17 +36,17 @@ BUDGETS = {
                                  "list_build": (31, 8, 4, 8)},
     ("capsid-assembly", 2, ""): {"plain_step": (16, 2, 2, 7), "sampled_step": (18, 4, 2, 4),
                                  "list_build": (89, 26, 4, 12)},
-    ("granular-bed", 1, ""): {"plain_step": (18, 1, 1, 0), "sampled_step": (24, 7, 1, 0), "list_build": (12, 2, 1, 0)},
+    ("granular-bed", 1, ""): {"plain_step": (8, 1, 1, 0), "sampled_step": (14, 7, 1, 0), "list_build": (12, 2, 1, 0)},
     ("granular-bed", 2, ""): {"plain_step": (18, 1, 1, 8), "sampled_step": (24, 7, 1, 8), "list_build": (58, 14, 3, 4)},
-    ("planar-couette", 1, ""): {"plain_step": (12, 3, 1, 0), "sampled_step": (14, 5, 1, 0),
+    ("planar-couette", 1, ""): {"plain_step": (7, 3, 1, 0), "sampled_step": (9, 5, 1, 0),
                                 "list_build": (12, 2, 2, 0)},
     ("planar-couette", 2, ""): {"plain_step": (12, 3, 1, 2), "sampled_step": (14, 5, 1, 2),
                                 "list_build": (59, 15, 4, 4)},
-    ("rayleigh-benard", 1, ""): {"plain_step": (17, 5, 3, 2), "sampled_step": (20, 8, 3, 0),
+    ("rayleigh-benard", 1, ""): {"plain_step": (13, 5, 3, 2), "sampled_step": (15, 8, 3, 0),
                                  "list_build": (12, 2, 2, 0)},
     ("rayleigh-benard", 2, ""): {"plain_step": (17, 5, 3, 6), "sampled_step": (20, 8, 3, 4),
                                  "list_build": (60, 16, 4, 8)},
-    ("rotating-drum", 1, ""): {"plain_step": (24, 1, 1, 7), "sampled_step": (34, 11, 1, 0),
+    ("rotating-drum", 1, ""): {"plain_step": (24, 1, 1, 7), "sampled_step": (24, 11, 1, 0),
                                "list_build": (30, 7, 4, 6)},
     ("rotating-drum", 2, ""): {"plain_step": (24, 1, 1, 11), "sampled_step": (34, 11, 1, 4),
                                "list_build": (86, 23, 4, 8)},
@@ -54,7 +54,7 @@ BUDGETS = {
                                 "list_build": (56, 11, 4, 0)},
     ("taylor-couette", 2, ""): {"plain_step": (16, 5, 1, 4), "sampled_step": (18, 7, 1, 2),
                                 "list_build": (72, 17, 4, 4)},
-    ("vibrated-sawtooth", 1, ""): {"plain_step": (25, 4, 1, 6), "sampled_step": (37, 16, 1, 0),
+    ("vibrated-sawtooth", 1, ""): {"plain_step": (15, 4, 1, 6), "sampled_step": (27, 16, 1, 0),
                                    "list_build": (12, 2, 2, 2)},
     ("vibrated-sawtooth", 2, ""): {"plain_step": (25, 4, 1, 14), "sampled_step": (37, 16, 1, 8),
                                    "list_build": (60, 16, 4, 9)},
