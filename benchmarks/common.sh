@@ -64,7 +64,7 @@ summary_value() { grep -o "\"$2\": [0-9.e+-]*" "$1" | awk '{print $2}'; }
 rss_sum() { cat "$1".* | awk '{s+=$1} END {print s*1024}'; rm -f "$1".*; }
 
 # min_max FILE: "min-max" of the numbers in FILE.
-min_max() { sort -g "$1" | awk 'NR==1 {lo=$1} {hi=$1} END {printf "%.2f-%.2f", lo, hi}'; }
+min_max() { sort -g "$1" | awk -v d="${2:-2}" 'NR==1 {lo=$1} {hi=$1} END {printf "%.*f-%.*f", d, lo, d, hi}'; }
 
 # run_stamp: when and where a run-length benchmark ran ("<UTC time>; <cores> cores, <CPU>");
 # commit_line: "# commit <hash>", marked when the engine's sources differ from it.
