@@ -25,6 +25,19 @@ public:
     /// Collective: every rank calls it at every step.
     void apply(const BackendParticles& particles, MPI_Comm comm, long long step);
 
+    /// apply() in two halves, so that the engine sums several layers' measures in one
+    /// collective: whether it acts at this step; this rank's part of the layer's kSums sums
+    /// (mass, momentum, twice the kinetic energy, count); the rescaling from the sums over all
+    /// ranks.
+    static constexpr int kSums = 6;
+    bool due(long long step) const { return step % interval_ == 0; }
+    void measure(const BackendParticles& particles, double* sums) const;
+    void rescale(const BackendParticles& particles, const double* all);
+    /// Whether the two layers may share a particle (then one rescales after the other).
+    bool overlaps(const WallLayerThermostat& other) const {
+        return axis_ != other.axis_ || (lo_ < other.hi_ && other.lo_ < hi_);
+    }
+
     /// Kinetic energy the layer rescaling has given the fluid since it was made (all ranks;
     /// the same on every rank). Negative where it cools.
     double energy() const { return energy_; }

@@ -2,6 +2,7 @@
 #include "core/integration.hpp"
 
 #include <cmath>
+#include <vector>
 
 #include "decomposition/reductions.hpp"
 #include "emergent/execution.hpp"
@@ -135,7 +136,23 @@ void Integration::apply_wall_layers() {
     PhaseTimer timer(s_.times.integrate);
     s_.particles.backend_reads(kPosition | kVelocity | kSpecies);
     const BackendParticles particles = forces_.backend_particles();
-    for (auto& layer : wall_layers) layer->apply(particles, s_.comm, s_.step);
+    // The layers due now are measured first and summed in one collective, where no two share
+    // a particle (each then rescales what the others did not touch: the same as one after the
+    // other).
+    std::vector<WallLayerThermostat*> due;
+    for (auto& layer : wall_layers)
+        if (layer->due(s_.step)) due.push_back(layer.get());
+    bool apart = true;
+    for (std::size_t a = 0; a < due.size(); ++a)
+        for (std::size_t b = a + 1; b < due.size(); ++b) apart = apart && !due[a]->overlaps(*due[b]);
+    if (!apart) {
+        for (WallLayerThermostat* layer : due) layer->apply(particles, s_.comm, s_.step);
+    } else if (!due.empty()) {
+        std::vector<double> sums(due.size() * WallLayerThermostat::kSums);
+        for (std::size_t k = 0; k < due.size(); ++k) due[k]->measure(particles, &sums[k * WallLayerThermostat::kSums]);
+        decomp::sum_in_place(s_.comm, sums.data(), static_cast<int>(sums.size()));
+        for (std::size_t k = 0; k < due.size(); ++k) due[k]->rescale(particles, &sums[k * WallLayerThermostat::kSums]);
+    }
     s_.particles.backend_wrote(kVelocity);
 }
 

@@ -18,14 +18,23 @@ WallLayerThermostat::WallLayerThermostat(int axis, double lo, double hi, double 
 }
 
 void WallLayerThermostat::apply(const BackendParticles& p, MPI_Comm comm, long long step) {
-    if (step % interval_ != 0) return;
-    const thermostat::InLayer layer{axis_, lo_, hi_};
+    if (!due(step)) return;
+    double all[kSums];
+    measure(p, all);
+    decomp::sum_in_place(comm, all, kSums);
+    rescale(p, all);
+}
+
+void WallLayerThermostat::measure(const BackendParticles& p, double* sums) const {
     const thermostat::LayerSums local = exec::transform_sum<thermostat::LayerSums>(
-        p.target, p.n_owned, thermostat::LayerMember{p.position, p.velocity, p.species, p.mass, layer});
+        p.target, p.n_owned, thermostat::LayerMember{p.position, p.velocity, p.species, p.mass, {axis_, lo_, hi_}});
+    const double mine[kSums] = {local.mass, local.momentum.x, local.momentum.y, local.momentum.z,
+                                local.twice_kinetic, local.count};
+    for (int k = 0; k < kSums; ++k) sums[k] = mine[k];
+}
+
+void WallLayerThermostat::rescale(const BackendParticles& p, const double* all) {
     // Mass, momentum, 2 x kinetic energy and number of the layer's particles.
-    double all[6] = {local.mass, local.momentum.x, local.momentum.y, local.momentum.z,
-                     local.twice_kinetic, local.count};
-    decomp::sum_in_place(comm, all, 6);
     const double n = all[5];
     // Two constraints (the zeroed mean flow along the wall): 3 n - 2 degrees of freedom.
     if (n < 2) return;
@@ -36,7 +45,7 @@ void WallLayerThermostat::apply(const BackendParticles& p, MPI_Comm comm, long l
     if (!(twice_kinetic > 0)) return;
     const double factor = std::sqrt(temperature_ * dof / twice_kinetic);
     exec::for_each(p.target, p.n_owned,
-                   thermostat::RescaleLayer{p.position, p.velocity, layer, factor, drift});
+                   thermostat::RescaleLayer{p.position, p.velocity, {axis_, lo_, hi_}, factor, drift});
     energy_ += 0.5 * (factor * factor * twice_kinetic - all[4]);
 }
 

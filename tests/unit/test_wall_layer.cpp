@@ -51,3 +51,34 @@ TEST(WallLayerThermostat, RescalesOnlyTheLayerToItsTemperatureWithoutDriftAlongT
     EXPECT_NEAR(twice_k / (3 * n - 2), 4.0, 1e-12);
     EXPECT_NEAR(layer.energy(), dk, 1e-10 * std::fabs(dk) + 1e-12);
 }
+
+TEST(WallLayerThermostat, MeasuredApartThenRescaledIsApplyBitForBit) {
+    // The engine sums the layers due at a step in one collective: each layer measured, the sums
+    // added, each rescaled. For layers that share no particle that is apply() one after the
+    // other, bit for bit; layers that may share one say so (overlaps), and are applied in turn.
+    ParticleStore store;
+    std::mt19937_64 rng(11);
+    std::normal_distribution<double> g(0.0, 1.0);
+    std::uniform_real_distribution<double> z(0.0, 10.0);
+    for (int k = 0; k < 300; ++k) store.add_owned({0, 0, z(rng)}, {g(rng), g(rng), g(rng)}, 0, k);
+    const std::vector<double> mass{1.0};
+    WallLayerThermostat hot(2, -1.0, 2.0, 2.0, 1), cold(2, 8.0, 11.0, 0.5, 1);
+    WallLayerThermostat hot2 = hot, cold2 = cold;
+    ParticleStore one_by_one = store, together = store;
+    hot.apply(host_view(one_by_one, mass), MPI_COMM_WORLD, 3);
+    cold.apply(host_view(one_by_one, mass), MPI_COMM_WORLD, 3);
+    double sums[2 * WallLayerThermostat::kSums];
+    hot2.measure(host_view(together, mass), sums);
+    cold2.measure(host_view(together, mass), sums + WallLayerThermostat::kSums);
+    MPI_Allreduce(MPI_IN_PLACE, sums, 2 * WallLayerThermostat::kSums, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+    hot2.rescale(host_view(together, mass), sums);
+    cold2.rescale(host_view(together, mass), sums + WallLayerThermostat::kSums);
+    for (std::size_t i = 0; i < store.n_owned(); ++i)
+        for (int d = 0; d < 3; ++d) ASSERT_EQ(one_by_one.velocity[i][d], together.velocity[i][d]) << i;
+    EXPECT_EQ(hot.energy(), hot2.energy());
+    EXPECT_EQ(cold.energy(), cold2.energy());
+    EXPECT_FALSE(hot.overlaps(cold));
+    EXPECT_TRUE(hot.overlaps(WallLayerThermostat(2, 1.5, 3.0, 1.0, 1)));
+    EXPECT_TRUE(hot.overlaps(WallLayerThermostat(0, 20.0, 21.0, 1.0, 1)));  // another axis
+    EXPECT_TRUE(hot.due(7) && !WallLayerThermostat(2, 0.0, 1.0, 1.0, 5).due(7));
+}
