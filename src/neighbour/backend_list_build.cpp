@@ -112,7 +112,8 @@ bool BackendListBuild::build_one_domain(const exec::Target& target, exec::Partic
     const std::size_t n = store.n_owned();
     const auto started = std::chrono::steady_clock::now();
     int* fault = reinterpret_cast<int*>(buffer(mirror, kFaults, n));
-    auto* key = static_cast<std::uint64_t*>(mirror.scratch(slot_ + kWideKeys, n * sizeof(std::uint64_t)));
+    // The keys live where the gather that follows the sort packs the particles (dead by then).
+    auto* key = reinterpret_cast<std::uint64_t*>(buffer(mirror, kGather, 2 * n));
     std::uint32_t* order = buffer(mirror, kValues, n);
     build::ComeHome home{mirror.array<Vec3>(kPosition), mirror.array<Vec3>(kVelocity),
                          mirror.array<Int3>(kImage), grid.global().wedge, grid.lo(), grid.hi(),
@@ -156,7 +157,7 @@ build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exe
         kinds.edge[d][1] = hi[d] - width;
     }
     std::vector<int> kind_from(routes.size() + 1, 0);  // route k makes kinds [from[k], from[k + 1])
-    signed char side[build::kMaxImageKinds + 1][3] = {{-1, -1, -1}};  // 0: the owned particles
+    unsigned need[build::kMaxImageKinds + 1] = {0};  // 0: the owned particles
     Vec3 shift[build::kMaxImageKinds + 1] = {};
     int made = 1, present = 1;
     for (std::size_t k = 0; k < routes.size(); ++k) {
@@ -167,23 +168,23 @@ build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exe
             for (int p = 0; p < present; ++p, ++made) {
                 if (made > build::kMaxImageKinds)
                     throw std::logic_error("BackendListBuild: more kinds of image than a domain has");
-                for (int d = 0; d < 3; ++d) side[made][d] = side[p][d];
-                side[made][route.axis] = static_cast<signed char>(route.side);
+                need[made] = need[p] | 1u << (2 * route.axis + route.side);
                 shift[made] = shift[p] + route.shift;
             }
     }
     kind_from[routes.size()] = made - 1;
     kinds.n = made - 1;
     for (int q = 0; q < kinds.n; ++q) {
-        for (int d = 0; d < 3; ++d) kinds.side[q][d] = side[q + 1][d];
+        kinds.need[q] = need[q + 1];
         kinds.shift[q] = shift[q + 1];
     }
-    const std::size_t n = store.n_owned(), rows = n + 1;
-    std::uint32_t* flag = buffer(mirror, kFlags, static_cast<std::size_t>(kinds.n) * rows);
+    const std::size_t n = store.n_owned(), n_blocks = (n + build::kImageBlock - 1) / build::kImageBlock,
+                      rows = n_blocks + 1;
+    std::uint32_t* first = buffer(mirror, kFlags, static_cast<std::size_t>(kinds.n) * rows);
     const build::ImageCounts counts = exec::transform_sum<build::ImageCounts>(
-        target, rows, build::FlagImages{mirror.array<Vec3>(kPosition), kinds, n, flag, fault});
+        target, rows, build::CountImages{mirror.array<Vec3>(kPosition), kinds, n, n_blocks, first, fault});
     if (counts.ids_outside || counts.first_fault != ~std::uint64_t{0}) return counts;
-    exec::exclusive_scan_queued(target, flag, flag, static_cast<std::size_t>(kinds.n) * rows);
+    exec::exclusive_scan_queued(target, first, first, static_cast<std::size_t>(kinds.n) * rows);
     std::vector<std::size_t> before(kinds.n + 1, 0);
     for (int q = 0; q < kinds.n; ++q) before[q + 1] = before[q] + counts.count[q];
     const std::size_t n_ghost = before[kinds.n];
@@ -197,12 +198,13 @@ build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exe
         add_field(copies, a, a, static_cast<unsigned>(bytes / 4));
     });
     exec::for_each(target, n,
-                   build::WriteImages{copies, mirror.array<Vec3>(kPosition), kinds, n, flag, root, total_shift});
+                   build::WriteImages{copies, mirror.array<Vec3>(kPosition), kinds, n, n_blocks, first, root,
+                                      total_shift});
     std::vector<decomp::HaloExchange::SwapPlan> plans;
     for (std::size_t k = 0; k < routes.size(); ++k) {
         const decomp::SwapRoute& route = routes[k];
-        const std::size_t first = before[kind_from[k]], last = before[kind_from[k + 1]];
-        plans.push_back({route.to_self, route.shift, route.turns, n + first, last - first});
+        const std::size_t from = before[kind_from[k]], to = before[kind_from[k + 1]];
+        plans.push_back({route.to_self, route.shift, route.turns, n + from, to - from});
     }
     halo.adopt_plan(grid, plans);
     backend_halo.place_roots(root, total_shift, n, n_ghost);

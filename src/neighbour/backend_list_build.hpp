@@ -172,7 +172,7 @@ private:
                                 kReference, kFaults, kLeave1, kKeep, kSend, kReceive, kIndex0, kIndex1,
                                 kConstituentFirst, kConstituentIndex, kNewOfOld,
                                 kSwapIndex0,  // then one per swap (up to 8)
-                                kRoots = kSwapIndex0 + 8, kShifts, kWideKeys };
+                                kRoots = kSwapIndex0 + 8, kShifts };
 
     std::size_t slot_;
     const double* range_table_ = nullptr;

@@ -340,26 +340,32 @@ struct ComeHomeAndKey {
 /// The most kinds of periodic image one domain gives its particles: 3^3 - 1 (faces, edges,
 /// corners).
 constexpr int kMaxImageKinds = 26;
+/// Particles per block of the images' counts: a kind's count is kept per block, and a particle
+/// finds its rank within its block by looking at the block's earlier members (so the counts take
+/// 4 bytes per kind and block, not per kind and particle).
+constexpr std::size_t kImageBlock = 32;
 
 /// The kinds of image of a domain that is its own neighbour on every open face (one rank, no
 /// wedge), in the order the halo's swaps make them (decomp::halo_routes, each phase exporting
-/// what was present when it began): kind q is made from a particle near face (d, side[q][d])
-/// of every axis d where side[q][d] >= 0, at its position plus shift[q]. Within a kind the
-/// images follow their owners' order, so ghost slot of (kind q, particle i) is the count of
+/// what was present when it began): kind q is made from a particle near every face whose bit is
+/// in need[q] (bit 2 d + side: face (d, side)), at its position plus shift[q]. Within a kind the
+/// images follow their owners' order, so the ghost slot of (kind q, particle i) is the count of
 /// images of kinds before q plus those of kind q from particles before i: the swaps' order.
 struct ImageKinds {
     int n = 0;
-    signed char side[kMaxImageKinds][3];
+    unsigned need[kMaxImageKinds];
     Vec3 shift[kMaxImageKinds];
     Real edge[3][2];  ///< near face (d, 0): x[d] < edge[d][0]; (d, 1): x[d] >= edge[d][1]
-    EMERGENT_HD bool near(const Vec3& x, int q) const {
+    /// The faces x is near, a bit for each (as NearFace decides it).
+    EMERGENT_HD unsigned near(const Vec3& x) const {
+        unsigned bits = 0;
         for (int d = 0; d < 3; ++d) {
-            const int s = side[q][d];
-            if (s == 0 && !(x[d] < edge[d][0])) return false;
-            if (s == 1 && !(x[d] >= edge[d][1])) return false;
+            if (x[d] < edge[d][0]) bits |= 1u << (2 * d);
+            if (x[d] >= edge[d][1]) bits |= 2u << (2 * d);
         }
-        return true;
+        return bits;
     }
+    EMERGENT_HD bool has(unsigned bits, int q) const { return (bits & need[q]) == need[q]; }
 };
 
 /// Images counted by kind, with what the migration before found: the first fault (its code
@@ -377,54 +383,64 @@ struct ImageCounts {
     }
 };
 
-/// flag[q * (n + 1) + i] = 1 where owned particle i has an image of kind q (and 0 at i = n, so
-/// one scan over all kinds gives every image its ghost slot); returns i's counts and its fault
-/// (fault null: none to report).
-struct FlagImages {
+/// Block b of the owned particles (kImageBlock of them): count[q * (n_blocks + 1) + b] = its
+/// images of kind q (0 at b = n_blocks, so one scan over all kinds gives every block its first
+/// ghost slot of each kind); returns the block's counts and its fault (fault null: none to
+/// report).
+struct CountImages {
     const Vec3* x;
     ImageKinds kinds;
-    std::size_t n;
-    std::uint32_t* flag;
+    std::size_t n, n_blocks;
+    std::uint32_t* count;
     const int* fault;
-    EMERGENT_HD ImageCounts operator()(std::size_t i) const {
+    EMERGENT_HD ImageCounts operator()(std::size_t b) const {
         ImageCounts c;
-        for (int q = 0; q < kinds.n; ++q) {
-            const std::uint32_t f = i < n && kinds.near(x[i], q) ? 1u : 0u;
-            flag[q * (n + 1) + i] = f;
-            c.count[q] = f;
+        const std::size_t first = b * kImageBlock, last = first + kImageBlock < n ? first + kImageBlock : n;
+        for (std::size_t i = first; i < last; ++i) {
+            const unsigned bits = kinds.near(x[i]);
+            if (bits)
+                for (int q = 0; q < kinds.n; ++q) c.count[q] += kinds.has(bits, q) ? 1u : 0u;
+            if (fault && fault[i]) {
+                if (fault[i] == kIdOutsideKeys)
+                    c.ids_outside = 1;
+                else if (((static_cast<std::uint64_t>(fault[i]) << 32) | i) < c.first_fault)
+                    c.first_fault = (static_cast<std::uint64_t>(fault[i]) << 32) | i;
+            }
         }
-        if (i < n && fault && fault[i]) {
-            if (fault[i] == kIdOutsideKeys)
-                c.ids_outside = 1;
-            else
-                c.first_fault = (static_cast<std::uint64_t>(fault[i]) << 32) | i;
-        }
+        for (int q = 0; q < kinds.n; ++q) count[q * (n_blocks + 1) + b] = c.count[q];
         return c;
     }
 };
 
-/// After the scan of FlagImages' flags (slot): owned particle i's images written at their
-/// ghost slots n + slot, every field copied but forces and positions (velocities as they are:
-/// no wedge turns them), positions shifted; each ghost's root and total shift kept for the
-/// refreshes (decomp::GhostFromRoot): the swaps' images, bit for bit.
+/// After the scan of CountImages' counts (first): owned particle i's images written at their
+/// ghost slots n + first of its block and kind + the kind's members before it in the block,
+/// every field copied but forces and positions (velocities as they are: no wedge turns them),
+/// positions shifted; each ghost's root and total shift kept for the refreshes
+/// (decomp::GhostFromRoot): the swaps' images, bit for bit.
 struct WriteImages {
     FieldGather fields;  ///< from == to: the store's arrays
     Vec3* x;
     ImageKinds kinds;
-    std::size_t n;
-    const std::uint32_t* slot;
+    std::size_t n, n_blocks;
+    const std::uint32_t* first;
     int* root;
     Vec3* total_shift;
     EMERGENT_HD void operator()(std::size_t i) const {
+        const unsigned bits = kinds.near(x[i]);
+        if (!bits) return;
+        const std::size_t b = i / kImageBlock, start = b * kImageBlock;
+        unsigned before[kImageBlock];
+        for (std::size_t k = start; k < i; ++k) before[k - start] = kinds.near(x[k]);
         for (int q = 0; q < kinds.n; ++q) {
-            const std::size_t at = q * (n + 1) + i;
-            if (slot[at + 1] == slot[at]) continue;
-            const std::size_t g = slot[at], j = n + g;
+            if (!kinds.has(bits, q)) continue;
+            std::size_t g = first[q * (n_blocks + 1) + b];
+            for (std::size_t k = start; k < i; ++k) g += kinds.has(before[k - start], q) ? 1u : 0u;
+            const std::size_t j = n + g;
             for (int f = 0; f < fields.n_fields; ++f) {
                 const unsigned words = fields.words[f];
                 const std::uint32_t* a = fields.from[f] + i * words;
-                std::uint32_t* b = fields.to[f] + j * words;
-                for (unsigned w = 0; w < words; ++w) b[w] = a[w];
+                std::uint32_t* c = fields.to[f] + j * words;
+                for (unsigned w = 0; w < words; ++w) c[w] = a[w];
             }
             x[j] = x[i] + kinds.shift[q];
             root[g] = static_cast<int>(i);
