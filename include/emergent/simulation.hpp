@@ -251,7 +251,11 @@ public:
                   const Vec3& omega, std::int64_t id, std::int64_t first_particle_id);
     bool has_bodies() const;
     /// This rank's rigid bodies (position = centre of mass, orientation, ...); empty if none.
+    /// As particles(): the non-const form counts every body field as changed by the caller (the
+    /// back end's copy is sent again before the next step), the const form only reads; a
+    /// scene that only reads calls the const form (std::as_const(sim).bodies()).
     ParticleStore& bodies();
+    const ParticleStore& bodies() const;
     long long n_bodies_global() const;
     /// Sets velocities from a Maxwell distribution at temperature T (same for any rank
     /// count), with zero total momentum and the kinetic energy of exactly T.

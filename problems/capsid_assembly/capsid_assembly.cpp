@@ -7,6 +7,7 @@
 #include <map>
 #include <numeric>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "emergent/kit/capsomer.hpp"
@@ -272,7 +273,7 @@ public:
     /// shells and fragments by them, and the bonds tell a closed ring from an open chain.
     Measures body_frame_values(Simulation& sim) override {
         const BondCensus census = site_bond_census(sim, rule_);
-        const ParticleStore& bodies = sim.bodies();
+        const ParticleStore& bodies = std::as_const(sim).bodies();  // read only: nothing to send back
         std::vector<double> cluster(bodies.n_owned(), -1), size(bodies.n_owned(), 0), bonds(bodies.n_owned(), 0);
         for (std::size_t b = 0; b < bodies.n_owned(); ++b) {
             const auto it = std::lower_bound(census.bodies.begin(), census.bodies.end(), bodies.id[b]);

@@ -4,6 +4,7 @@
 // by embedded spheres; radial (small-particle core) and axial (bands) segregation emerge.
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "emergent/kit/body_shapes.hpp"
@@ -192,7 +193,7 @@ public:
     }
 
     Measures measures(Simulation& sim) override {
-        const ParticleStore& b = sim.bodies();
+        const ParticleStore& b = std::as_const(sim).bodies();  // read only: nothing to send back
         const std::size_t n = b.n_owned();
         std::vector<double> z(n), r(n);
         std::vector<char> big(n);

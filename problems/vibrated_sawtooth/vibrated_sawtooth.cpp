@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "emergent/boundary.hpp"
@@ -169,7 +170,7 @@ public:
     }
 
     Measures measures(Simulation& sim) override {
-        const ParticleStore& p = sim.particles();
+        const ParticleStore& p = std::as_const(sim).particles();  // read only: nothing to send back
         const std::size_t n = p.n_owned();
         std::vector<double> u(n);
         std::vector<char> big(n);

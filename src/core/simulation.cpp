@@ -209,6 +209,12 @@ void Simulation::initialise() {
     if (e.settings.balance == LoadBalance::Cost && e.neighbourhood.rebalance()) e.neighbourhood.rebuild();
     e.count_bodies();
     e.forces.compute(true, e.time);
+    // What only the host holds yet (fields the build and the first forces did not need) goes
+    // to the back end now, with the set-up, rather than in the first steps.
+    e.particles.backend_reads(kAllFields & ~kForce);
+    e.bodies_resident.backend_reads(EngineState::kBodyFields & ~(kForce | kTorque));
+    e.masses();
+    e.inverse_masses();
 }
 
 const std::vector<Vec3>& Simulation::list_reference_positions() const {
@@ -344,6 +350,10 @@ ParticleStore& Simulation::bodies() {
     engine_->bodies_resident.host_reads(EngineState::kBodyFields);
     engine_->bodies_resident.host_wrote(EngineState::kBodyFields);
     return engine_->rigid.store();
+}
+const ParticleStore& Simulation::bodies() const {
+    engine_->bodies_resident.host_reads(EngineState::kBodyFields);
+    return engine_->rigid.bodies();
 }
 long long Simulation::n_bodies_global() const { return engine_->n_bodies; }
 

@@ -131,7 +131,7 @@ void write_contents(hid_t file, Simulation& sim, const Config& config,
             // continuation on the same rank grid deals them back there.
             const std::vector<int> owner(s.n_owned(), sim.rank());
             put("owner_rank", H5T_NATIVE_INT, 0, owner.data(), sizeof(int));
-            ParticleStore& b = sim.bodies();
+            const ParticleStore& b = std::as_const(sim).bodies();
             H5Id group = create_group(root, "bodies");
             write_attribute(group, "n_global", sim.n_bodies_global());
             const IdOrder border(comm, b.id.data(), b.n_owned(), sim.n_bodies_global());

@@ -170,7 +170,7 @@ void RunOutput::write_frame(Simulation& sim) {
 void RunOutput::write_bodies(Simulation& sim) {
     // The scene's values first: they may sync the bodies, whose arrays are then read once.
     const Measures extra = scene_ ? scene_->body_frame_values(sim) : Measures{};
-    trajectory_->write_bodies(sim.bodies(), sim.step_index(), sim.time(), extra);
+    trajectory_->write_bodies(std::as_const(sim).bodies(), sim.step_index(), sim.time(), extra);
 }
 
 void RunOutput::restore_fields(const CheckpointHeader& checkpoint, int rank) {
