@@ -7,6 +7,7 @@ import importlib.machinery
 import io
 import sys
 
+sys.path.insert(0, sys.argv[1])  # the script's own modules (emergentpy), as when it runs itself
 table = importlib.machinery.SourceFileLoader("phenomena_table", sys.argv[1] + "/phenomena_table").load_module()
 failures = []
 # Clopper-Pearson 95 % limits: 3 of 10 -> 0.0667-0.6525 (R's binom.test(3, 10)); 0 of 1 and
