@@ -132,12 +132,9 @@ bool BackendListBuild::build_one_domain(const exec::Target& target, exec::Partic
     if (status.first_fault != ~std::uint64_t{0}) {
         // The first fault as the host's migration finds it (describe_fault); its particle has
         // moved in the sort since.
-        const int code = static_cast<int>(status.first_fault >> 32);
         const auto before = static_cast<std::uint32_t>(status.first_fault & 0xffffffffu);
         const std::size_t i = exec::first_index(target, n, build::WentTo{order, before});
-        const int kind = (code - 1) % 3 + 1;
-        name_fault(target, mirror, i, (code - 1) / 3,
-                   kind == 1 ? decomp::kLeftThroughClosedFace : decomp::kMovedMoreThanABox);
+        name_fault_code(target, mirror, i, static_cast<int>(status.first_fault >> 32), -1);
         return true;
     }
     list(target, mirror, store, cells, list_range);
@@ -217,7 +214,11 @@ void BackendListBuild::describe_fault(const exec::Target& target, exec::Particle
     const double first = exec::transform_max(target, n, -1e300, build::FaultOrder{fault});
     if (first == -1e300) return;
     const int code = static_cast<int>(-first);
-    const std::size_t i = exec::first_index(target, n, build::HasFault{fault, code});
+    name_fault_code(target, mirror, exec::first_index(target, n, build::HasFault{fault, code}), code, axis);
+}
+
+void BackendListBuild::name_fault_code(const exec::Target& target, const exec::ParticleMirror& mirror,
+                                       std::size_t i, int code, int axis) {
     // Codes: per axis 1 closed face, 2 and 3 long jumps through side 0 and 1; a one-pass
     // migration (axis < 0) numbers them on from 1 + 3 axis (build::fault_code).
     const int kind = axis < 0 ? (code - 1) % 3 + 1 : code;

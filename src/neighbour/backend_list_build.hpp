@@ -104,6 +104,10 @@ private:
     void describe_fault(const exec::Target& target, exec::ParticleMirror& mirror, std::size_t n,
                         const int* fault, int axis);
     /// Names particle i (its id and position on the back end) in fault_, as the host would.
+    /// Names particle i by its fault code (as describe_fault reads codes: per axis, or with
+    /// axis -1 a one-pass migration's).
+    void name_fault_code(const exec::Target& target, const exec::ParticleMirror& mirror, std::size_t i, int code,
+                         int axis);
     void name_fault(const exec::Target& target, const exec::ParticleMirror& mirror, std::size_t i, int axis,
                     const char* why);
     /// The owned particles become index[0 .. count) in that order, every array but the forces
