@@ -49,8 +49,9 @@ public:
     /// Builds on the back end. Every field but forces must be current there or on the host
     /// (the mirror uploads what is stale); afterwards all live on the back end, the store holds
     /// the new size, `halo` and `backend_halo` the ghost plan. Collective. Returns false on
-    /// every rank, having changed nothing, where some id does not fit the sort keys (the caller
-    /// builds on the host); returns true with fault() set on every rank where some particle
+    /// every rank where some id does not fit the sort keys (the caller builds on the host):
+    /// having changed nothing, or (one domain) having brought the particles home and sorted
+    /// them, which the host's build repeats to the same end; returns true with fault() set on every rank where some particle
     /// could not be brought home (the caller stops).
     bool build(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                const decomp::RankGrid& grid, const CellList& cells, double ghost_width,
