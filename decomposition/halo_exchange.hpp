@@ -9,6 +9,7 @@
 
 #include "emergent/message_counts.hpp"
 #include "emergent/particle_store.hpp"
+#include "halo_plan.hpp"
 #include "rank_grid.hpp"
 
 namespace emergent::decomp {
@@ -24,25 +25,6 @@ namespace emergent::decomp {
 /// between the y and z phases, two exchanges of a rank with itself across the cut faces, whose
 /// copies are rotated about z. Nothing here knows what the fields mean, except that positions
 /// are shifted and rotated, and velocities rotated, across those boundaries.
-/// One swap of the halo, as the one order of swaps has it (halo_routes): the face it exports
-/// from, where it sends and receives, and what it does to the copies.
-struct SwapRoute {
-    int axis = 0;   ///< the face's axis; -1: a wedge's cut face (side 0: theta = 0)
-    int side = 0;   ///< 0: the low face (copies go down), 1: the high face
-    int send_rank = MPI_PROC_NULL, recv_rank = MPI_PROC_NULL;
-    bool to_self = false;
-    Vec3 shift{0, 0, 0};  ///< across a periodic boundary: one box length
-    int turns = 0;        ///< wedge rotations of the copies (before the shift)
-    /// The first swap of a phase: it and the rest of its phase export from the particles
-    /// present now (an axis's two faces; the wedge's two cut faces).
-    bool starts_phase = false;
-};
-
-/// The halo's swaps in their order: per axis its two faces, -x, +x, -y, +y, -z, +z, and a
-/// wedge's two cut faces before z. Written once: the host's build, the back end's build
-/// (BackendListBuild) and adopt_plan() all follow it.
-std::vector<SwapRoute> halo_routes(const RankGrid& grid);
-
 class HaloExchange {
 public:
     /// Drops old ghosts, then imports ghosts for all particles within `width` of the local
@@ -77,30 +59,20 @@ public:
     double refresh_wait_seconds() const { return wait_seconds_; }
 
     /// Number of ghosts imported by the last build.
-    std::size_t n_ghost() const { return n_ghost_; }
+    std::size_t n_ghost() const { return plan_.n_ghost; }
 
-    /// The plan as a back end needs it to refresh ghosts where the particles live (the plan
-    /// itself stays host code): swap k sends decomp::GhostImage copies of export_index(k)
-    /// (rotated by `turns` wedge steps, then shifted) to ghosts [import_first, import_first +
-    /// import_count) of the receiving rank, itself when `to_self`. Swaps run in order: later
-    /// ones re-export ghosts of earlier ones.
-    struct SwapPlan {
-        bool to_self;
-        Vec3 shift;
-        int turns;
-        std::size_t import_first, import_count;
-    };
-    /// Takes the plan of a build made where the particles live (one rank alone: a list build on
-    /// the back end), the swaps given in build()'s order with their shifts, turns and import
-    /// ranges. Their export lists stay there (exec::BackendHalo), so the host's refreshes below
-    /// are refused until the next build().
-    void adopt_plan(const RankGrid& grid, const std::vector<SwapPlan>& plans);
-    std::size_t n_swaps() const { return swaps_.size(); }
-    SwapPlan swap_plan(std::size_t k) const;
-    const std::vector<int>& export_index(std::size_t k) const { return swaps_.at(k).export_index; }
+    /// The plan of the last build (made by make_halo_plan, here or on a back end), which a back
+    /// end follows to refresh ghosts where the particles live (exec::BackendHalo).
+    const HaloPlan& plan() const { return plan_; }
+    /// Swap k's export indices, where the plan was made here.
+    const std::vector<int>& export_index(std::size_t k) const { return exports_.at(k); }
+    /// Takes the plan of a build made where the particles live (a list build on the back end:
+    /// exec::BackendListBuild). Its export lists stay there (exec::BackendHalo), so the host's
+    /// refreshes below are refused until the next build().
+    void adopt_plan(const RankGrid& grid, HaloPlan plan);
     /// False after adopt_plan(): the export lists are not here.
     bool exports_on_host() const { return !exports_elsewhere_; }
-    const Wedge& wedge() const { return wedge_; }
+    const Wedge& wedge() const { return plan_.wedge; }
     /// Sends swap k's packed copies (host memory) and receives its ghosts' into `recv`.
     void exchange_bytes(std::size_t k, const void* send, std::size_t send_bytes, void* recv,
                         std::size_t recv_bytes) const;
@@ -113,23 +85,12 @@ public:
 private:
     void gather(std::vector<Vec3>& field, bool is_position);
 
-    struct Swap {
-        int send_rank = 0, recv_rank = 0;
-        bool to_self = false;
-        Vec3 shift{0, 0, 0};
-        int turns = 0;  ///< wedge rotations applied to the copies (before the shift)
-        std::vector<int> export_index;
-        std::size_t import_first = 0, import_count = 0;
-    };
+    /// What make_halo_plan() needs from the host's particles (halo_exchange.cpp).
+    struct HostPlace;
 
-    /// A swap along `route`, its exports and imports still empty.
-    static Swap on_route(const SwapRoute& route);
-    /// A wedge's cut face (swap.turns: +1 the face theta = 0, -1 the other): the first
-    /// n_candidates particles within `width` of it, into swap.export_index.
-    void wedge_exports(const ParticleStore& store, double width, std::size_t n_candidates, Swap& swap) const;
-    void pack_fields_shifted(ParticleStore& store, unsigned fields, const Swap& swap,
-                             std::size_t stride);
-    void exchange(const Swap& swap, const void* send, std::size_t send_bytes, void* recv,
+    void pack_fields_shifted(ParticleStore& store, unsigned fields, const SwapRoute& route,
+                             const std::vector<int>& exports, const Wedge& wedge, std::size_t stride);
+    void exchange(const SwapRoute& route, const void* send, std::size_t send_bytes, void* recv,
                   std::size_t recv_bytes, int tag, MessageCounts& tally) const;
 
     /// The first swap after `first` that re-exports a ghost imported by a swap in
@@ -143,11 +104,10 @@ private:
     void wait_stage();
 
     MPI_Comm comm_ = MPI_COMM_NULL;
-    Wedge wedge_;
-    std::vector<Swap> swaps_;
+    HaloPlan plan_;
+    std::vector<std::vector<int>> exports_;  ///< per swap, where the plan was made here
     std::vector<char> send_buffer_, recv_buffer_;
     std::vector<Vec3> send_vectors_;
-    std::size_t n_ghost_ = 0;
     bool exports_elsewhere_ = false;  ///< adopt_plan(): the export lists are on the back end
     // The staged refresh in progress: its fields, the next swap to start, the requests and
     // per-swap send buffers of the stage in flight.

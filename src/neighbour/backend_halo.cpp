@@ -30,7 +30,7 @@ void BackendHalo::place(const decomp::HaloExchange& halo, ParticleMirror& mirror
         throw std::logic_error("BackendHalo::place: the halo's export lists are not on the host");
     index_.clear();
     std::vector<std::size_t> first(1, 0), count;
-    for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
+    for (std::size_t k = 0; k < halo.plan().swaps.size(); ++k) {
         const std::vector<int>& e = halo.export_index(k);
         index_.insert(index_.end(), e.begin(), e.end());
         first.push_back(index_.size());
@@ -59,33 +59,19 @@ void BackendHalo::place_roots(const int* root, const Vec3* shift, std::size_t n_
     refresh_ = Refresh::from_roots;
 }
 
-bool BackendHalo::from_roots(const decomp::HaloExchange& halo) {
-    // Faces -x, +x, -y, +y, -z, +z: the two swaps of an axis never re-export each other's
-    // ghosts, so a ghost's way passes each axis at most once, and each component of its
-    // position is shifted at most once (a wedge adds two swaps: not here).
-    if (halo.n_swaps() != 6) return false;
-    for (std::size_t k = 0; k < 6; ++k) {
-        const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
-        if (!plan.to_self || plan.turns != 0) return false;
-        for (int d = 0; d < 3; ++d)
-            if (d != static_cast<int>(k / 2) && plan.shift[d] != 0) return false;
-    }
-    return true;
-}
-
 void BackendHalo::trace_roots(const Target& target, const decomp::HaloExchange& halo,
                               ParticleMirror& mirror, std::size_t scratch_slot) {
-    n_owned_ = halo.swap_plan(0).import_first;
-    const decomp::HaloExchange::SwapPlan last = halo.swap_plan(halo.n_swaps() - 1);
-    n_ghost_ = last.import_first + last.import_count - n_owned_;
+    const decomp::HaloPlan& plan = halo.plan();
+    n_owned_ = plan.n_owned;
+    n_ghost_ = plan.n_ghost;
     int* roots = static_cast<int*>(mirror.scratch(scratch_slot + 1, n_ghost_ * sizeof(int)));
     Vec3* shifts = static_cast<Vec3*>(mirror.scratch(scratch_slot + 2, n_ghost_ * sizeof(Vec3)));
     // In swap order: a swap's sources among the ghosts were traced by the swaps before it.
-    for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
-        const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
+    for (std::size_t k = 0; k < plan.swaps.size(); ++k) {
+        const decomp::HaloSwap& swap = plan.swaps[k];
         exec::for_each(target, swap_count_.at(k),
-                       decomp::GhostRoot{swap_index_[k], n_owned_, plan.import_first - n_owned_, roots,
-                                         shifts, plan.shift});
+                       decomp::GhostRoot{swap_index_[k], n_owned_, swap.import_first - n_owned_, roots, shifts,
+                                         swap.route.shift});
     }
     roots_ = roots;
     shifts_ = shifts;
@@ -94,7 +80,7 @@ void BackendHalo::trace_roots(const Target& target, const decomp::HaloExchange& 
 void BackendHalo::prepare(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
                           std::size_t scratch_slot) {
     if (refresh_ != Refresh::undecided) return;
-    refresh_ = from_roots(halo) ? Refresh::from_roots : Refresh::by_swaps;
+    refresh_ = halo.plan().from_roots() ? Refresh::from_roots : Refresh::by_swaps;
     if (refresh_ == Refresh::from_roots) trace_roots(target, halo, mirror, scratch_slot);
 }
 
@@ -106,28 +92,29 @@ void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
         exec::for_each(target, n_ghost_, decomp::GhostFromRoot{x, roots_, shifts_, is_position, x + n_owned_});
         return;
     }
-    for (std::size_t k = 0; k < halo.n_swaps(); ++k) {
-        const decomp::HaloExchange::SwapPlan plan = halo.swap_plan(k);
+    const decomp::HaloPlan& plan = halo.plan();
+    for (std::size_t k = 0; k < plan.swaps.size(); ++k) {
+        const decomp::HaloSwap& swap = plan.swaps[k];
         const std::size_t n = swap_count_.at(k);
         const int* index = swap_index_[k];
-        const Vec3 shift = is_position ? plan.shift : Vec3{0, 0, 0};
-        if (plan.to_self) {
+        const Vec3 shift = is_position ? swap.route.shift : Vec3{0, 0, 0};
+        if (swap.route.to_self) {
             // Sources are owned particles and earlier swaps' ghosts, all before import_first:
             // the copies can land in place.
             exec::for_each(target, n,
-                           decomp::GhostImage{x, index, x + plan.import_first, halo.wedge(),
-                                              plan.turns, shift});
+                           decomp::GhostImage{x, index, x + swap.import_first, plan.wedge, swap.route.turns,
+                                              shift});
             continue;
         }
         Vec3* packed = static_cast<Vec3*>(mirror.scratch(scratch_slot, n * sizeof(Vec3)));
         exec::for_each(target, n,
-                       decomp::GhostImage{x, index, packed, halo.wedge(), plan.turns, shift});
-        const std::size_t send_bytes = n * sizeof(Vec3), receive_bytes = plan.import_count * sizeof(Vec3);
+                       decomp::GhostImage{x, index, packed, plan.wedge, swap.route.turns, shift});
+        const std::size_t send_bytes = n * sizeof(Vec3), receive_bytes = swap.import_count * sizeof(Vec3);
         if (target.direct_mpi) {
             // MPI reads and writes the back end's memory: no staging; the packing kernel must
             // have finished first.
             synchronize(target);
-            halo.exchange_bytes(k, packed, send_bytes, x + plan.import_first, receive_bytes);
+            halo.exchange_bytes(k, packed, send_bytes, x + swap.import_first, receive_bytes);
             continue;
         }
         void* send = mirror.staging(0, send_bytes);
@@ -136,7 +123,7 @@ void BackendHalo::gather(const Target& target, const decomp::HaloExchange& halo,
         // a neighbour (a wall) moves nothing: no copies then.
         if (n > 0) mirror.copy_to_host(send, packed, send_bytes);
         halo.exchange_bytes(k, send, send_bytes, receive, receive_bytes);
-        if (plan.import_count > 0) mirror.copy_to_backend(x + plan.import_first, receive, receive_bytes);
+        if (swap.import_count > 0) mirror.copy_to_backend(x + swap.import_first, receive, receive_bytes);
     }
 }
 

@@ -34,15 +34,12 @@ public:
     /// positions (shifted across periodic boundaries) or velocities (never shifted); both
     /// rotated across wedge faces. Uses the mirror's scratch slots scratch_slot to
     /// scratch_slot + 2.
-    /// Where every swap is a rank's copy to itself with at most a shift along its own axis
-    /// (one rank, periodic box, no wedge), the ghosts are traced back to their owned roots once
-    /// per plan and refreshed in one pass from there (decomp::GhostFromRoot), the same bits as
-    /// the swaps one after another.
+    /// Where the plan allows it (decomp::HaloPlan::from_roots), the ghosts are traced back to
+    /// their owned roots once per plan and refreshed in one pass from there
+    /// (decomp::GhostFromRoot), the same bits as the swaps one after another.
     void gather(const Target& target, const decomp::HaloExchange& halo, ParticleMirror& mirror,
                 Vec3* field, bool is_position, std::size_t scratch_slot);
 
-    /// Whether gather() refreshes this plan's ghosts from their roots in one pass.
-    static bool from_roots(const decomp::HaloExchange& halo);
     /// Decides how the current plan is refreshed, and traces its roots where it is from them:
     /// part of the build, so the steps that follow it do only their one pass (else the first
     /// gather() does it). Uses the scratch slots as gather() does.

@@ -95,15 +95,6 @@ bool BackendListBuild::build(const exec::Target& target, exec::ParticleMirror& m
     return true;
 }
 
-bool BackendListBuild::one_domain(const decomp::RankGrid& grid) {
-    if (grid.size() != 1 || grid.global().wedge.active()) return false;
-    for (const decomp::SwapRoute& route : decomp::halo_routes(grid))
-        if (route.axis < 0 || route.turns != 0 ||
-            !(route.to_self || (route.send_rank == MPI_PROC_NULL && route.recv_rank == MPI_PROC_NULL)))
-            return false;
-    return true;
-}
-
 bool BackendListBuild::build_one_domain(const exec::Target& target, exec::ParticleMirror& mirror,
                                         ParticleStore& store, const decomp::RankGrid& grid, const CellList& cells,
                                         double ghost_width, double list_range, decomp::HaloExchange& halo,
@@ -145,35 +136,20 @@ build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exe
                                                  ParticleStore& store, const decomp::RankGrid& grid, double width,
                                                  decomp::HaloExchange& halo, exec::BackendHalo& backend_halo,
                                                  const int* fault) {
-    // The kinds in the swaps' order: a phase's faces each image what was there when it began.
-    const std::vector<decomp::SwapRoute> routes = decomp::halo_routes(grid);
+    // The kinds in the order the halo's swaps would make them (decomp::LoneDomainImages).
+    const decomp::LoneDomainImages images = decomp::lone_domain_images(grid);
+    if (images.kinds.size() > static_cast<std::size_t>(build::kMaxImageKinds))
+        throw std::logic_error("BackendListBuild: more kinds of image than a domain has");
     build::ImageKinds kinds;
     const Vec3 lo = grid.lo(), hi = grid.hi();
     for (int d = 0; d < 3; ++d) {
         kinds.edge[d][0] = lo[d] + width;
         kinds.edge[d][1] = hi[d] - width;
     }
-    std::vector<int> kind_from(routes.size() + 1, 0);  // route k makes kinds [from[k], from[k + 1])
-    unsigned need[build::kMaxImageKinds + 1] = {0};  // 0: the owned particles
-    Vec3 shift[build::kMaxImageKinds + 1] = {};
-    int made = 1, present = 1;
-    for (std::size_t k = 0; k < routes.size(); ++k) {
-        const decomp::SwapRoute& route = routes[k];
-        if (route.starts_phase) present = made;
-        kind_from[k] = made - 1;
-        if (route.to_self)
-            for (int p = 0; p < present; ++p, ++made) {
-                if (made > build::kMaxImageKinds)
-                    throw std::logic_error("BackendListBuild: more kinds of image than a domain has");
-                need[made] = need[p] | 1u << (2 * route.axis + route.side);
-                shift[made] = shift[p] + route.shift;
-            }
-    }
-    kind_from[routes.size()] = made - 1;
-    kinds.n = made - 1;
+    kinds.n = static_cast<int>(images.kinds.size());
     for (int q = 0; q < kinds.n; ++q) {
-        kinds.need[q] = need[q + 1];
-        kinds.shift[q] = shift[q + 1];
+        kinds.need[q] = images.kinds[q].faces;
+        kinds.shift[q] = images.kinds[q].shift;
     }
     const std::size_t n = store.n_owned(), n_blocks = (n + build::kImageBlock - 1) / build::kImageBlock,
                       rows = n_blocks + 1;
@@ -182,9 +158,8 @@ build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exe
         target, rows, build::CountImages{mirror.array<Vec3>(kPosition), kinds, n, n_blocks, first, fault});
     if (counts.ids_outside || counts.first_fault != ~std::uint64_t{0}) return counts;
     exec::exclusive_scan_queued(target, first, first, static_cast<std::size_t>(kinds.n) * rows);
-    std::vector<std::size_t> before(kinds.n + 1, 0);
-    for (int q = 0; q < kinds.n; ++q) before[q + 1] = before[q] + counts.count[q];
-    const std::size_t n_ghost = before[kinds.n];
+    decomp::HaloPlan plan = images.plan(n, std::vector<std::size_t>(counts.count, counts.count + kinds.n));
+    const std::size_t n_ghost = plan.n_ghost;
     mirror.resize_on_backend(store, n, n_ghost);
     int* root = reinterpret_cast<int*>(buffer(mirror, kRoots, n_ghost));
     Vec3* total_shift = static_cast<Vec3*>(mirror.scratch(slot_ + kShifts, n_ghost * sizeof(Vec3)));
@@ -197,13 +172,7 @@ build::ImageCounts BackendListBuild::make_images(const exec::Target& target, exe
     exec::for_each(target, n,
                    build::WriteImages{copies, mirror.array<Vec3>(kPosition), kinds, n, n_blocks, first, root,
                                       total_shift});
-    std::vector<decomp::HaloExchange::SwapPlan> plans;
-    for (std::size_t k = 0; k < routes.size(); ++k) {
-        const decomp::SwapRoute& route = routes[k];
-        const std::size_t from = before[kind_from[k]], to = before[kind_from[k + 1]];
-        plans.push_back({route.to_self, route.shift, route.turns, n + from, to - from});
-    }
-    halo.adopt_plan(grid, plans);
+    halo.adopt_plan(grid, std::move(plan));
     backend_halo.place_roots(root, total_shift, n, n_ghost);
     return counts;
 }
@@ -443,87 +412,90 @@ const std::uint32_t* BackendListBuild::sort_by_cell_and_id(const exec::Target& t
     return order;
 }
 
-void BackendListBuild::append_images(const exec::Target& target, exec::ParticleMirror& mirror,
-                                     ParticleStore& store, build::NearFace near, std::size_t n_candidates,
-                                     decomp::HaloExchange::SwapPlan plan, const Wedge& wedge,
-                                     MPI_Comm comm, int to, int from) {
-    const std::size_t k = plans_.size();
-    std::uint32_t* flag = buffer(mirror, kFlags, n_candidates + 1);
-    near.flag = flag;
-    near.n = n_candidates;
-    exec::for_each(target, n_candidates + 1, near);
-    const std::size_t count = exec::exclusive_scan(target, flag, flag, n_candidates + 1);
-    int* index = reinterpret_cast<int*>(buffer(mirror, kSwapIndex0 + k, count));
-    exec::for_each(target, n_candidates, build::Compact{flag, index});
-    plan.import_first = store.size();
-    if (plan.to_self) {
-        // The owners' values of every field (ghosts carry what owners have), positions moved
-        // to the image and velocities turned, as HaloExchange does; in place, since every
-        // source lies before the new ghosts.
-        plan.import_count = count;
-        mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + count);
-        build::FieldGather copies;
-        mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
-            if (field == kForce || field == kPosition) return;
-            const unsigned words = static_cast<unsigned>(bytes / 4);
-            std::uint32_t* a = static_cast<std::uint32_t*>(data);
-            add_field(copies, a, a + plan.import_first * words, words);
-        });
-        exec::for_each(target, count, build::GatherFields<int>{copies, index});
-        Vec3* x = mirror.array<Vec3>(kPosition);
-        exec::for_each(target, count,
-                       decomp::GhostImage{x, index, x + plan.import_first, wedge, plan.turns, plan.shift});
-        if (plan.turns) {
-            Vec3* v = mirror.array<Vec3>(kVelocity);
-            exec::for_each(target, count, build::TurnedCopy{v, index, v + plan.import_first, wedge, plan.turns});
+/// The back end's particles as decomp::make_halo_plan() sees them: exports flagged by position
+/// and compacted (kept for refreshes), copies made in place where the swap is this rank's own,
+/// else packed, staged and exchanged, ghosts appended.
+struct BackendListBuild::BackendPlace {
+    BackendListBuild& build;
+    const exec::Target& target;
+    exec::ParticleMirror& mirror;
+    ParticleStore& store;
+    const decomp::RankGrid& grid;
+    double width;
+
+    std::size_t size() const { return store.size(); }
+
+    std::size_t select(const decomp::SwapRoute& route, std::size_t k, std::size_t n_candidates) {
+        const Wedge& wedge = grid.global().wedge;
+        const int d = route.axis, side = route.side;
+        build::NearFace near{mirror.array<Vec3>(kPosition), d, side, 0, wedge, 0, 0, nullptr};
+        if (d < 0) {
+            near.width = width;  // a wedge's cut face
+        } else {
+            // A face without a neighbour exports nothing: its flags are all 0.
+            const bool open = route.send_rank != MPI_PROC_NULL;
+            near.edge = !open ? (side == 0 ? -INFINITY : INFINITY)
+                              : (side == 0 ? grid.lo()[d] + width : grid.hi()[d] - width);
         }
-    } else {
-        std::uint32_t* packed = buffer(mirror, kSend, count * packed_words(mirror));
-        pack(target, mirror, index, count, packed, true, plan.shift, plan.turns, wedge);
-        const std::uint32_t* received = nullptr;
-        plan.import_count =
-            exchange(target, mirror, comm, to, from, packed, count, kReceive, &received, ghost_traffic_);
-        mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + plan.import_count);
-        unpack(mirror, received, plan.import_count, plan.import_first);
+        std::uint32_t* flag = build.buffer(mirror, kFlags, n_candidates + 1);
+        near.flag = flag;
+        near.n = n_candidates;
+        exec::for_each(target, n_candidates + 1, near);
+        const std::size_t count = exec::exclusive_scan(target, flag, flag, n_candidates + 1);
+        int* index = reinterpret_cast<int*>(build.buffer(mirror, kSwapIndex0 + k, count));
+        exec::for_each(target, n_candidates, build::Compact{flag, index});
+        build.swap_index_.push_back(index);
+        build.swap_count_.push_back(count);
+        return count;
     }
-    plans_.push_back(plan);
-    swap_index_.push_back(index);
-    swap_count_.push_back(count);
-}
+
+    std::size_t move(const decomp::SwapRoute& route, std::size_t k, std::size_t count) {
+        const Wedge& wedge = grid.global().wedge;
+        const int* index = build.swap_index_.at(k);
+        const std::size_t import_first = store.size();
+        if (route.to_self) {
+            // The owners' values of every field (ghosts carry what owners have), positions moved
+            // to the image and velocities turned, as HaloExchange does; in place, since every
+            // source lies before the new ghosts.
+            mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + count);
+            build::FieldGather copies;
+            mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
+                if (field == kForce || field == kPosition) return;
+                const unsigned words = static_cast<unsigned>(bytes / 4);
+                std::uint32_t* a = static_cast<std::uint32_t*>(data);
+                add_field(copies, a, a + import_first * words, words);
+            });
+            exec::for_each(target, count, build::GatherFields<int>{copies, index});
+            Vec3* x = mirror.array<Vec3>(kPosition);
+            exec::for_each(target, count, decomp::GhostImage{x, index, x + import_first, wedge, route.turns, route.shift});
+            if (route.turns) {
+                Vec3* v = mirror.array<Vec3>(kVelocity);
+                exec::for_each(target, count, build::TurnedCopy{v, index, v + import_first, wedge, route.turns});
+            }
+            return count;
+        }
+        std::uint32_t* packed = build.buffer(mirror, kSend, count * build.packed_words(mirror));
+        build.pack(target, mirror, index, count, packed, true, route.shift, route.turns, wedge);
+        const std::uint32_t* received = nullptr;
+        const std::size_t n_recv = build.exchange(target, mirror, grid.comm(), route.send_rank, route.recv_rank,
+                                                  packed, count, kReceive, &received, build.ghost_traffic_);
+        mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + n_recv);
+        build.unpack(mirror, received, n_recv, import_first);
+        return n_recv;
+    }
+};
 
 void BackendListBuild::make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror,
                                    ParticleStore& store, const decomp::RankGrid& grid, double width,
                                    decomp::HaloExchange& halo, exec::BackendHalo& backend_halo) {
-    // The halo's routes in their order (decomp::halo_routes): both faces of a phase export from
-    // the particles present when the phase began.
     if (one_domain(grid)) {
         make_images(target, mirror, store, grid, width, halo, backend_halo, nullptr);
         return;
     }
-    plans_.clear();
     swap_index_.clear();
     swap_count_.clear();
-    const Vec3 lo = grid.lo(), hi = grid.hi();
-    const Wedge& wedge = grid.global().wedge;
-    std::size_t n_candidates = 0;
-    for (const decomp::SwapRoute& route : decomp::halo_routes(grid)) {
-        if (route.starts_phase) n_candidates = store.size();
-        const decomp::HaloExchange::SwapPlan plan{route.to_self, route.shift, route.turns, 0, 0};
-        const int d = route.axis, side = route.side;
-        if (d < 0) {  // a wedge's cut face
-            build::NearFace near{mirror.array<Vec3>(kPosition), -1, side, 0, wedge, width, 0, nullptr};
-            append_images(target, mirror, store, near, n_candidates, plan, wedge, grid.comm(), MPI_PROC_NULL,
-                          MPI_PROC_NULL);
-            continue;
-        }
-        // A face without a neighbour exports nothing: its flags are all 0.
-        const bool open = route.send_rank != MPI_PROC_NULL;
-        const Real edge = !open ? (side == 0 ? -INFINITY : INFINITY) : (side == 0 ? lo[d] + width : hi[d] - width);
-        build::NearFace near{mirror.array<Vec3>(kPosition), d, side, edge, wedge, 0, 0, nullptr};
-        append_images(target, mirror, store, near, n_candidates, plan, wedge, grid.comm(), route.send_rank,
-                      route.recv_rank);
-    }
-    halo.adopt_plan(grid, plans_);
+    BackendPlace place{*this, target, mirror, store, grid, width};
+    halo.adopt_plan(grid, decomp::make_halo_plan(grid, place));
     backend_halo.place_on_backend(swap_index_, swap_count_);
 }
 

@@ -144,16 +144,16 @@ private:
     void make_ghosts(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                      const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
                      exec::BackendHalo& backend_halo);
-    /// Whether the domain is its own neighbour on every open face (one rank, no wedge): then
-    /// one pass brings particles home and keys them, one sort orders them, and every ghost is
-    /// made from its owner in one pass (make_images).
-    static bool one_domain(const decomp::RankGrid& grid);
+    /// Whether the domain is alone (decomp::lone_domain: one rank, no wedge): then one pass
+    /// brings particles home and keys them, one sort orders them, and every ghost is made from
+    /// its owner in one pass (make_images).
+    static bool one_domain(const decomp::RankGrid& grid) { return decomp::lone_domain(grid); }
     /// The build of one domain without bodies: 12 passes over particles, 2 read-backs (the
     /// images' counts with the migration's faults, the list's length).
     bool build_one_domain(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                           const decomp::RankGrid& grid, const CellList& cells, double ghost_width,
                           double list_range, decomp::HaloExchange& halo, exec::BackendHalo& backend_halo);
-    /// One domain's ghosts, every kind of image at once (build::ImageKinds): a pass counting
+    /// One domain's ghosts, every kind of image at once (decomp::LoneDomainImages): a pass counting
     /// them (which reads back, with the counts, the faults of the migration before it, from
     /// `fault` where given), a scan, a pass writing them with their roots; the halo's plan and
     /// the refreshes' roots placed. Writes nothing where a fault or an id outside the keys was
@@ -161,12 +161,8 @@ private:
     build::ImageCounts make_images(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
                                    const decomp::RankGrid& grid, double width, decomp::HaloExchange& halo,
                                    exec::BackendHalo& backend_halo, const int* fault);
-    /// Appends as ghosts the images of the candidates flagged by `near` (over the n_candidates
-    /// particles present before the swap's phase): the next swap of the plan, copied in place
-    /// where it is this rank's own, else sent to rank `to` while `from`'s come in.
-    void append_images(const exec::Target& target, exec::ParticleMirror& mirror, ParticleStore& store,
-                       build::NearFace near, std::size_t n_candidates, decomp::HaloExchange::SwapPlan plan,
-                       const Wedge& wedge, MPI_Comm comm, int to, int from);
+    /// What decomp::make_halo_plan() needs from the back end's particles (make_ghosts).
+    struct BackendPlace;
     void list(const exec::Target& target, exec::ParticleMirror& mirror, const ParticleStore& store,
               const CellList& cells, double list_range);
 
@@ -190,7 +186,6 @@ private:
     MessageCounts migration_traffic_, ghost_traffic_;
     double migration_seconds_ = 0;
     std::size_t n_free_ = 0;  ///< free particles before the constituents, at the last build
-    std::vector<decomp::HaloExchange::SwapPlan> plans_;
     std::vector<const int*> swap_index_;
     std::vector<std::size_t> swap_count_;
 };

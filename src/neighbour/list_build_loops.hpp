@@ -346,8 +346,7 @@ constexpr int kMaxImageKinds = 26;
 constexpr std::size_t kImageBlock = 32;
 
 /// The kinds of image of a domain that is its own neighbour on every open face (one rank, no
-/// wedge), in the order the halo's swaps make them (decomp::halo_routes, each phase exporting
-/// what was present when it began): kind q is made from a particle near every face whose bit is
+/// wedge), in the order the halo's swaps make them (decomp::LoneDomainImages): kind q is made from a particle near every face whose bit is
 /// in need[q] (bit 2 d + side: face (d, side)), at its position plus shift[q]. Within a kind the
 /// images follow their owners' order, so the ghost slot of (kind q, particle i) is the count of
 /// images of kinds before q plus those of kind q from particles before i: the swaps' order.

@@ -327,10 +327,14 @@ TEST(BackendListBuild, OneDomainMakesTheHostsOwnersGhostsAndPlanBitForBit) {
             differing += std::memcmp(&b.host.image[i], &b.backend.image[i], sizeof(Int3)) != 0;
         }
         EXPECT_EQ(differing, 0u) << side;
-        ASSERT_EQ(b.backend_halo.n_swaps(), b.host_halo.n_swaps());
-        for (std::size_t k = 0; k < b.host_halo.n_swaps(); ++k) {
-            EXPECT_EQ(b.backend_halo.swap_plan(k).import_first, b.host_halo.swap_plan(k).import_first) << k;
-            EXPECT_EQ(b.backend_halo.swap_plan(k).import_count, b.host_halo.swap_plan(k).import_count) << k;
+        const decomp::HaloPlan &on_backend = b.backend_halo.plan(), &on_host = b.host_halo.plan();
+        ASSERT_EQ(on_backend.swaps.size(), on_host.swaps.size());
+        EXPECT_EQ(on_backend.n_owned, on_host.n_owned);
+        EXPECT_EQ(on_backend.n_ghost, on_host.n_ghost);
+        for (std::size_t k = 0; k < on_host.swaps.size(); ++k) {
+            EXPECT_EQ(on_backend.swaps[k].import_first, on_host.swaps[k].import_first) << k;
+            EXPECT_EQ(on_backend.swaps[k].import_count, on_host.swaps[k].import_count) << k;
+            EXPECT_EQ(on_backend.swaps[k].export_count, on_host.swaps[k].export_count) << k;
         }
     }
 }
@@ -379,7 +383,7 @@ TEST(BackendHalo, RefreshFromRootsGivesTheSwapsBits) {
     }
     decomp::HaloExchange halo;
     halo.build(start, grid, 2.5, kPosition | kVelocity);
-    ASSERT_TRUE(exec::BackendHalo::from_roots(halo));
+    ASSERT_TRUE(halo.plan().from_roots());
     ASSERT_GT(halo.n_ghost(), start.n_owned() / 2);
     // The owners move; then each side refreshes its ghosts.
     for (std::size_t i = 0; i < start.n_owned(); ++i)
