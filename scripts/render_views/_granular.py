@@ -1,14 +1,18 @@
 """Shared by the granular views (cutaway, big_grains, small_grains): rotating-drum and
 vibrated-sawtooth runs, big grains (species 1) red and small (species 0) yellow as in the paper,
-flat-shaded square points the size of a small grain."""
+spheres at their true diameters, the container drawn behind them (the drum's wall, translucent;
+the sawtooth's base at its rest level), framed on the container, with the legend, a scale bar and
+the time."""
 import os
 import sys
 
-from paraview.simple import Calculator, Show, Threshold, Xdmf3ReaderT
+import h5py
+import numpy as np
+from paraview.simple import Calculator, LinearExtrusion, PolyLineSource, Show, Threshold, Xdmf3ReaderT
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _common import (SPECIES_RGB, box, colour_by_value, flat_points, flat_view, parameter,  # noqa: E402
-                     point_size, render_frames, scene, set_camera)
+from _common import (SPECIES_RGB, box, colour_by_value, corners, cylinder_wall, diameters, framed,  # noqa: E402
+                     parameter, render_frames, ring, scene, sphere_view, spheres, wall)
 
 BIG_RGB, SMALL_RGB = SPECIES_RGB[0], SPECIES_RGB[2]
 SCENES = ("rotating-drum", "vibrated-sawtooth")
@@ -28,36 +32,80 @@ def keep(source, function, lower, upper, name):
     return kept
 
 
+def text(run, name):
+    with h5py.File(f"{run}/trajectory.h5", "r") as f:
+        value = f["parameters"].attrs[name]
+    return value.decode() if isinstance(value, bytes) else str(value)
+
+
+def sawtooth_base(view, run, lo, hi, y0, y1):
+    """The base's profile through its rods' centres at its rest level (z = 0), teeth of
+    tooth_period and tooth_height along x (gentle edge rising toward +x over gentle_fraction of
+    the period; `mirrored` reflected; `flat` level), from y0 to y1; None for the cylindrical
+    container, whose rings are not drawn."""
+    if text(run, "container") != "slot":
+        return None
+    period, height = parameter(run, "tooth_period"), parameter(run, "tooth_height")
+    gentle, kind = parameter(run, "gentle_fraction"), text(run, "base")
+    peak = {"sawtooth": gentle, "mirrored": 1 - gentle}.get(kind)
+    points = []
+    for k in range(int(round((hi[0] - lo[0]) / period))):
+        start = lo[0] + k * period
+        points += [(start, 0.0)] + ([(start + peak * period, height)] if peak is not None else [])
+    points.append((hi[0], 0.0))
+    line = PolyLineSource(Points=sum(([u, y0, z] for u, z in points), []))
+    surface = LinearExtrusion(Input=line)
+    surface.Vector, surface.ScaleFactor, surface.Capping = [0.0, 1.0, 0.0], y1 - y0, 0
+    shown = wall(view, surface, opacity=1.0)
+    shown.BackfaceRepresentation = "Follow Frontface"  # seen from above: drawn both sides, opaque
+    return shown
+
+
 def draw(mode):
     """mode: cutaway (the near half removed: x > 0 in the drum, the front y < middle in the
     sawtooth's container) or big / small (that species alone: the drum from the side, the
     sawtooth layer from above)."""
     run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
-    name = scene(run)
+    drum = scene(run) == "rotating-drum"
     lo, hi = box(run, "all")
-    drum = name == "rotating-drum"
+    with h5py.File(f"{run}/trajectory.h5", "r") as f:
+        x = f["particles/all/position/value"][-1]
+        species = f["particles/all/species/value"][-1]
+    d = diameters(run)
     reader = Xdmf3ReaderT(FileName=[f"{run}/trajectory.xmf"])
+    view = sphere_view(width, height)
+    middle = (lo[1] + hi[1]) / 2
     if mode == "cutaway":
         if drum:
             shown, direction, up = keep(reader, "coordsX", -1e30, 0.0, "cut"), (-1, -0.45, -0.35), (0, 1, 0)
+            chosen = x[:, 0] <= 0
         else:
-            middle = (lo[1] + hi[1]) / 2
             shown = keep(reader, f"coordsY-({middle!r})", 0.0, 1e30, "cut")
             direction, up = (0.3, 1, -0.5), (0, 0, 1)
-        diameter = 1.0
+            chosen = x[:, 1] >= middle
     else:
         k = 1 if mode == "big" else 0
         shown = keep(reader, "species", k - 0.5, k + 0.5, "chosen")
         direction, up = ((-1, 0, 0), (0, 1, 0)) if drum else ((0, 0, -1), (0, 1, 0))
-        diameter = 1.0 if drum else parameter(run, "d_big" if k == 1 else "d_small") - 0.1
-    if not drum:  # the layer, not the empty space above it
-        hi = hi.copy()
-        hi[2] = min(hi[2], lo[2] + 3 + 4 * parameter(run, "depth"))
-    view = flat_view(width, height)
+        chosen = species == k
+    if drum:
+        radius = parameter(run, "diameter") / 2
+        cylinder_wall(view, radius, lo[2], hi[2])
+        # The drum is the content: its rims (the far half's, cut away).
+        content = np.concatenate([ring(radius, z) for z in (lo[2], hi[2])])
+        if mode == "cutaway":
+            content = content[content[:, 0] <= 1e-9]
+        pad = 0.0
+    else:
+        y0 = middle if mode == "cutaway" else lo[1]
+        sawtooth_base(view, run, lo, hi, y0, hi[1])
+        # The grains shown and the base under them.
+        base = corners([lo[0], y0, -0.5], [hi[0], hi[1], parameter(run, "tooth_height")])
+        content = np.concatenate([x[chosen], base])
+        pad = d[chosen].max() / 2 if chosen.any() else 0.0
     out = Show(shown, view)
-    size = point_size(lo, hi, width, height, diameter, direction)
-    flat_points(out, size)
-    colour_by_value(out, "species", {0: SMALL_RGB, 1: BIG_RGB})
-    set_camera(view, lo, hi, width, height, direction, up)
-    n = render_frames(view, reader, prefix, which, width, height, extra={"point_size": size})
+    spheres(out)
+    lut = colour_by_value(out, "species", {0: SMALL_RGB, 1: BIG_RGB}, {0: "small", 1: "big"})
+    camera = framed(view, run, content, width, height, direction, up, lut, "grains", pad=pad)
+    n = render_frames(view, reader, prefix, which, width, height, extra=camera)
     print(f"{n} image(s) of {run}")

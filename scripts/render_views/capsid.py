@@ -1,20 +1,39 @@
 """Run by pvbatch (scripts/render): capsid-assembly's state as the paper shows it, monomers and
 solvent hidden: every capsomer in a cluster of two or more, from above (+z looking down),
-orthographic and flat-shaded, complete shells (clusters of 60) dark blue, incomplete clusters
-light orange. Reads trajectory.bodies.xmf and its cluster_size array.
+orthographic, each capsomer a lit sphere whose diameter is the median distance between
+neighbouring capsomers in those clusters (so neighbours touch, as their spheres do), complete
+shells (clusters of 60) dark blue, incomplete clusters light orange; framed on the clusters, with
+the legend, a scale bar and the time. Reads trajectory.bodies.xmf and its cluster_size array.
 usage: pvbatch capsid.py RUN_DIR OUT_PREFIX all|last WIDTH HEIGHT"""
 import os
 import sys
 
-from paraview.simple import Show, Threshold, Xdmf3ReaderT
+import h5py
+import numpy as np
+from paraview.simple import Calculator, Show, Threshold, Xdmf3ReaderT
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _common import box, colour_by_value, flat_points, flat_view, render_frames, top_camera  # noqa: E402
+from _common import box, colour_by_value, corners, framed, render_frames, sphere_view, spheres  # noqa: E402
 
 SHELL_RGB, PARTIAL_RGB = (0.10, 0.20, 0.60), (1.00, 0.75, 0.50)
 
+
+def capsomer_diameter(x):
+    """The median nearest-neighbour distance among the clustered capsomers x (3 where fewer
+    than two)."""
+    if len(x) < 2:
+        return 3.0
+    gaps = np.linalg.norm(x[:, None] - x[None], axis=2)
+    np.fill_diagonal(gaps, np.inf)
+    return float(np.median(gaps.min(axis=1)))
+
+
 run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
 lo, hi = box(run, "bodies")
+with h5py.File(f"{run}/trajectory.h5", "r") as f:
+    x = f["particles/bodies/position/value"][-1]
+    clustered = x[f["particles/bodies/cluster_size/value"][-1] >= 2]
+diameter = capsomer_diameter(clustered[:2000])
 reader = Xdmf3ReaderT(FileName=[f"{run}/trajectory.bodies.xmf"])
 clusters = Threshold(Input=reader)  # monomers (cluster_size 1) hidden
 clusters.Scalars = ["POINTS", "cluster_size"]
@@ -22,10 +41,14 @@ try:
     clusters.LowerThreshold, clusters.UpperThreshold = 1.5, 1e9
 except AttributeError:
     clusters.ThresholdRange = [1.5, 1e9]
-view = flat_view(width, height)
-shown = Show(clusters, view)
-flat_points(shown, 10)
-colour_by_value(shown, "cluster_size", {n: SHELL_RGB if n == 60 else PARTIAL_RGB for n in range(2, 61)})
-top_camera(view, lo, hi, width, height)
-n = render_frames(view, reader, prefix, which, width, height, extra={"point_size": 10})
+complete = Calculator(Input=clusters)  # 1 for a complete shell's capsomers, else 0
+complete.ResultArrayName = "complete"
+complete.Function = "cluster_size >= 60"
+view = sphere_view(width, height)
+shown = Show(complete, view)
+spheres(shown, diameter)
+lut = colour_by_value(shown, "complete", {0: PARTIAL_RGB, 1: SHELL_RGB}, {0: "2-59", 1: "shell (60)"})
+camera = framed(view, run, clustered if len(clustered) else corners(lo, hi), width, height, (0, 0, -1), (0, 1, 0),
+                lut, "clusters", pad=diameter / 2)
+n = render_frames(view, reader, prefix, which, width, height, extra={**camera, "diameter": diameter})
 print(f"{n} image(s) of {run}")

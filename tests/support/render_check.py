@@ -1,11 +1,20 @@
 #!/usr/bin/python3
 """Checks an image from scripts/render against the run it shows. The view's camera comes from
-the PNG's .camera.json (world -> screen matrix); what each point should look like is computed
-here from trajectory.h5 / fields.h5, independently of the view script:
-  - at the projection of every shown point that no nearer shown point covers, the pixel (or one
-    beside it) has the colour that point maps to;
+the PNG's .camera.json (world -> screen matrix, pixels per unit length, the annotation strip);
+what each point should look like is computed here from trajectory.h5 / fields.h5, independently
+of the view script:
+  - particles are lit spheres: at the projection of every shown sphere that no nearer shown
+    sphere covers, the pixel (or one beside it) has the colour that sphere maps to, darkened by
+    at most the shading a pixel off the centre gets (or, behind a translucent wall, that colour
+    seen through it); where a wall may stand in front (walls drawn solid), at most a fifth of
+    them may show the wall's neutral grey instead;
+  - an isolated sphere's drawn width is its true diameter;
   - hidden points that nothing covers leave the background;
-  - far from every shown point the image is background (white).
+  - far from every shown point the image is background (white, or a wall's neutral grey where
+    the view draws walls), the strip aside;
+  - framing: what is drawn spans at least 90 % of the picture left of the strip along one axis
+    and leaves its border free;
+  - field views (rolls, convection): as before, flat colours at cell centres and line points.
 usage: render_check.py RUN_DIR PNG VIEW
 views: particles capsid capsid_early quadrant cutaway big_grains small_grains rolls
        convection_above convection_oblique convection_below"""
@@ -94,18 +103,144 @@ def verdict(checked, good, hidden_checked, hidden_good, far, what, minimum=20):
           "hidden points not drawn, background clean")
 
 
+
+def shade_match(patch, colour, veil=None):
+    """Whether a pixel of `patch` [k, 3] is `colour` lit at a tilt of at most ~37 degrees (a
+    factor 0.8-1 on every channel: the pixel nearest a projected centre lies within one pixel of
+    it, and spheres checked are at least 2.5 pixels in radius), within 0.03 per channel for the
+    image's rounding and anti-aliasing; with `veil` also that seen through a translucent flat
+    grey wall ((1 - a) lit colour + a grey)."""
+    c = np.asarray(colour, float)
+    candidates = [(0.0, 0.0)] + ([(veil["opacity"], veil["grey"])] if veil else [])
+    for a, grey in candidates:
+        under = (patch - a * grey) / (1 - a)
+        s = np.clip(under @ c / (c @ c), 0.8, 1.0)
+        if np.any(np.all(np.abs(under - s[:, None] * c) < 0.03 / (1 - a), axis=1)):
+            return True
+    return False
+
+
+def neutral(pixels, tolerance=0.03):
+    """Pixels [k, 3] that are a neutral grey (a wall's)."""
+    return np.ptp(pixels, axis=-1) < tolerance
+
+
+def check_spheres(x, colour, shown, radius, hidden=None, walls=False, veil=None, checked_only=None):
+    """Lit spheres: colour (or, walls drawn, at most a fifth neutral grey) at uncovered shown
+    centres (of `checked_only` where given: every shown sphere may still cover them),
+    background at uncovered hidden centres, true widths of isolated spheres, a clean background
+    away from them; returns the verdict's counts."""
+    col, row, depth = project(x)
+    hidden = ~shown if hidden is None else hidden
+    strip = cam["strip"][0]
+    checked = good = grey = hidden_checked = hidden_good = widths = widths_good = 0
+    on = np.nonzero(shown)[0]
+    for i in range(len(x)):
+        r, k = int(round(row[i])), int(round(col[i]))
+        if not (2 <= r < H - 2 and 2 <= k < strip - 2):
+            continue
+        dist = np.hypot(col[on] - col[i], row[on] - row[i])
+        patch = img[r - 1:r + 2, k - 1:k + 2].reshape(-1, 3)
+        if shown[i]:
+            if radius[i] < 2.5 or (checked_only is not None and not checked_only[i]):
+                continue  # too small to tell its colour from its rim, or not to be checked
+            nearer = (depth[on] < depth[i]) & (on != i)
+            if np.any(nearer & (dist < radius[on] + 1.5)):
+                continue  # a nearer sphere may cover it
+            checked += 1
+            if shade_match(patch, colour[i], veil):
+                good += 1
+            elif walls and np.any(neutral(patch)):
+                grey += 1
+            # An isolated sphere (no other drawn within its diameter and a few pixels): the
+            # run of drawn pixels through its centre along the row is its diameter.
+            # (Background along the row: white, or a wall's light neutral grey; a sphere's own
+            # colour must then not be grey, nor its rim, which darkens towards black.)
+            alone = (on != i) & (dist < radius[i] + radius[on] + 3)
+            if (not np.any(alone) and radius[i] >= 4 and k - 2 * radius[i] > 0 and k + 2 * radius[i] < strip
+                    and np.ptp(colour[i]) > 0.1):
+                pixels_along = img[r, :, :]
+                line = ~((pixels_along.min(axis=1) >= 0.97)
+                         | (walls & neutral(pixels_along) & (pixels_along.mean(axis=1) >= 0.5)))
+                left = right = k
+                while left > 0 and line[left - 1]:
+                    left -= 1
+                while right < W - 1 and line[right + 1]:
+                    right += 1
+                widths += 1
+                widths_good += abs((right - left + 1) - 2 * radius[i]) <= 2.5
+        elif hidden[i] and not np.any(dist < radius[on] + 3):
+            hidden_checked += 1
+            hidden_good += np.all(patch > 0.98) or (walls and np.all(neutral(patch)))
+    far = np.ones((H, W), bool)
+    far[:, strip:] = False
+    for i in on:
+        r, k, reach = int(round(row[i])), int(round(col[i])), int(np.ceil(radius[i])) + 3
+        far[max(0, r - reach):max(0, r + reach + 1), max(0, k - reach):max(0, k + reach + 1)] = False
+    return checked, good, grey, hidden_checked, hidden_good, widths, widths_good, far
+
+
+def sphere_verdict(checked, good, grey, hidden_checked, hidden_good, widths, widths_good, far, what,
+                   walls=False, minimum=20):
+    problems = []
+    pixels = img[far]
+    background = np.all(pixels > 0.98, axis=1) | (walls & neutral(pixels))
+    clean = background.mean() if len(pixels) else 1.0
+    if checked < minimum:
+        problems.append(f"only {checked} uncovered shown {what} to check")
+    if good + grey != checked:
+        problems.append(f"{checked - good - grey} of {checked} uncovered {what} lack their colour")
+    if grey > checked / 5:
+        problems.append(f"{grey} of {checked} uncovered {what} show a wall's grey instead of their colour")
+    if widths_good != widths:
+        problems.append(f"{widths - widths_good} of {widths} isolated {what} not drawn at their diameter")
+    if hidden_good != hidden_checked:
+        problems.append(f"{hidden_checked - hidden_good} of {hidden_checked} hidden points were drawn")
+    if clean < 0.999:
+        problems.append(f"{1 - clean:.2%} of the pixels far from every point are not background")
+    problems += framing_problems(walls)
+    if problems:
+        sys.exit(f"FAIL ({view}): " + "; ".join(problems))
+    print(f"ok ({view}): {good} of {checked} uncovered {what} in their colour ({grey} behind a wall), "
+          f"{widths} isolated at their diameter, {hidden_checked} hidden points not drawn, background "
+          "clean, framed")
+
+
+def framing_problems(walls):
+    """The drawn content (not background) spans >= 90 % of the picture left of the strip along
+    one axis (the view frames it with 3 % to spare on its longer side) and stays off its
+    outermost 1 % (nothing cut off)."""
+    strip = cam["strip"][0]
+    part = img[:, :strip]
+    drawn = ~(np.all(part > 0.98, axis=2) | (walls & neutral(part)))
+    if walls:  # walls are content too: anything not white
+        drawn = ~np.all(part > 0.98, axis=2)
+    rows, cols = np.nonzero(drawn)
+    if len(rows) == 0:
+        return ["nothing drawn"]
+    span = max((cols.max() - cols.min() + 1) / strip, (rows.max() - rows.min() + 1) / H)
+    problems = [] if span >= 0.9 else [f"the content spans {span:.0%} of the picture (framing asks >= 90 %)"]
+    edge = max(1, int(0.01 * min(strip, H)))
+    border = np.r_[drawn[:edge].ravel(), drawn[-edge:].ravel(), drawn[:, :edge].ravel(), drawn[:, strip - edge:].ravel()]
+    if border.mean() > 0.01:
+        problems.append(f"{border.mean():.1%} of the picture's border is drawn on: the content is cut off")
+    return problems
+
 f = h5py.File(f"{run}/trajectory.h5", "r")
 scene = f["parameters"].attrs["scene"].decode()
 size = cam.get("point_size", 6)
+pixels = cam.get("pixels_per_unit")
 if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "capsid_early"):
     g = f["particles/all"]
     frames = len(g["position/value"])
     frame = min(1, frames - 1) if view == "capsid_early" else -1
     x = g["position/value"][frame]
     species = g["species/value"][frame]
+    d = g["diameter/value"][frame] if "diameter" in g else np.ones(len(x))
+    radius = d / 2 * pixels
     shown = np.ones(len(x), bool)
     hidden = None
-    tolerance = 0.02
+    walls = view in ("quadrant", "cutaway", "big_grains", "small_grains")
     if view == "particles":
         colour = SPECIES[species % len(SPECIES)]
     elif view == "quadrant":
@@ -125,6 +260,7 @@ if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "c
             shown = species == (1 if view == "big_grains" else 0)
     else:  # capsid_early: capsomer spheres opaque, solvent translucent grey, sites hidden
         shown = species == 1
+        radius = np.full(len(x), 0.5 * pixels)
         colour = np.tile(SPECIES[1], (len(x), 1))
         solvent = species == 0
         col, row, depth = project(x)
@@ -138,7 +274,7 @@ if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "c
             if not (2 <= r < H - 2 and 2 <= k < W - 2):
                 continue
             dc, dr = np.abs(col - k), np.abs(row - r)
-            if np.any(shown & (dc < size / 2 + 2) & (dr < size / 2 + 2)):
+            if np.any(shown & (np.hypot(dc, dr) < radius + 2)):
                 continue
             inside = solvent & (np.maximum(dc, dr) < s_half - 1.5)
             edge = solvent & (np.maximum(dc, dr) >= s_half - 1.5) & (np.maximum(dc, dr) <= s_half + 1.5)
@@ -153,16 +289,19 @@ if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "c
         reach = s_half + 2
         over = np.array([shown[i] and np.any(solvent & (np.maximum(np.abs(col - col[i]), np.abs(row - row[i])) < reach)
                                               & (depth < depth[i])) for i in range(len(x))])
-        c, gd, hc, hg, far = check_points(x, colour, shown & ~over, size, np.zeros(len(x), bool))
-        verdict(c, gd, hc, hg, np.zeros_like(far), "capsomer spheres", minimum=10)
+        counts = check_spheres(x, colour, shown, radius, np.zeros(len(x), bool), checked_only=~over)
+        counts = counts[:-1] + (np.zeros_like(counts[-1]),)  # the solvent fills the background
+        sphere_verdict(*counts, "capsomer spheres", minimum=10)
         sys.exit(0)
-    verdict(*check_points(x, colour, shown, size, hidden, tolerance), "particles")
+    sphere_verdict(*check_spheres(x, colour, shown, radius, hidden, walls, cam.get("veil")), "particles",
+                   walls=walls)
 elif view == "capsid":
     g = f["particles/bodies"]
     x = g["position/value"][-1]
     csize = g["cluster_size/value"][-1]
     colour = np.where((csize == 60)[:, None], [(0.10, 0.20, 0.60)], [(1.00, 0.75, 0.50)])
-    verdict(*check_points(x, colour, csize >= 2, size), "capsomers")
+    radius = np.full(len(x), cam["diameter"] / 2 * pixels)
+    sphere_verdict(*check_spheres(x, colour, csize >= 2, radius), "capsomers")
 elif view == "rolls":
     # Each cell's centre in its vorticity colour (computed here from fields.h5), where no
     # black stream-function contour passes over it.

@@ -1,7 +1,8 @@
 """Run by pvbatch: loads a state file from scripts/replay and checks that it opens the run: its
 reader has the run's recorded times and, at the last, the run's particle (or field-cell) count,
-and what the view shows has the number of points the view's rule gives (every particle; the
-drum's cut-away: those with x <= 0; capsid: capsomers in clusters; stream lines: some).
+and what the view shows from the run (walls, labels and legends aside) has the number of points
+the view's rule gives (every particle; the drum's cut-away: those with x <= 0; capsid: capsomers
+in clusters; stream lines: some).
 usage: pvbatch state_check.py STATE.pvsm RUN_DIR VIEW"""
 import sys
 
@@ -37,11 +38,25 @@ reader.UpdatePipeline(times[-1])
 n = servermanager.Fetch(reader).GetNumberOfPoints()
 if n != expected:
     sys.exit(f"FAIL: the state's reader has {n} points at the last time, the run {expected}")
+def reads_the_run(proxy):
+    """Whether the pipeline object draws from the run's reader (not a wall, a label or a scale
+    bar the view adds)."""
+    while proxy is not None:
+        if proxy == reader:
+            return True
+        inputs = proxy.ListProperties()
+        proxy = proxy.Input if "Input" in inputs else None
+        if isinstance(proxy, list):
+            proxy = proxy[0] if proxy else None
+    return False
+
+
 counts = []
 for rep in view.Representations:
-    if rep.Visibility == 1 and rep.Input is not None:
-        rep.Input.UpdatePipeline(times[-1])
-        counts.append(servermanager.Fetch(rep.Input).GetNumberOfPoints())
+    source = rep.Input if "Input" in rep.ListProperties() else None
+    if rep.Visibility == 1 and source is not None and reads_the_run(source):
+        source.UpdatePipeline(times[-1])
+        counts.append(servermanager.Fetch(source).GetNumberOfPoints())
 if not counts:
     sys.exit("FAIL: nothing shown")
 if view_name == "cutaway" and counts != [int(np.sum(x[:, 0] <= 0))]:
