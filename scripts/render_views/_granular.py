@@ -10,9 +10,12 @@ import h5py
 import numpy as np
 from paraview.simple import Calculator, LinearExtrusion, PolyLineSource, Show, Threshold, Xdmf3ReaderT
 
+# The section view: the drum's grains within this distance of its middle cross-section.
+SECTION_HALF_THICKNESS = 1.5
+
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _common import (SPECIES_RGB, box, colour_by_value, corners, cylinder_wall, diameters, framed,  # noqa: E402
-                     parameter, render_frames, ring, scene, sphere_view, spheres, wall)
+from _common import (SPECIES_RGB, WALL_GREY, box, colour_by_value, corners, cylinder_wall, diameters,  # noqa: E402
+                     flat, framed, parameter, render_frames, ring, scene, sphere_view, spheres, wall)
 
 BIG_RGB, SMALL_RGB = SPECIES_RGB[0], SPECIES_RGB[2]
 SCENES = ("rotating-drum", "vibrated-sawtooth")
@@ -63,8 +66,9 @@ def sawtooth_base(view, run, lo, hi, y0, y1):
 
 def draw(mode):
     """mode: cutaway (the near half removed: x > 0 in the drum, the front y < middle in the
-    sawtooth's container) or big / small (that species alone: the drum from the side, the
-    sawtooth layer from above)."""
+    sawtooth's container), section (the drum's grains within SECTION_HALF_THICKNESS of its
+    middle cross-section, seen along the axis inside the wall's circle) or big / small (that
+    species alone: the drum from the side, the sawtooth layer from above)."""
     run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
     drum = scene(run) == "rotating-drum"
     lo, hi = box(run, "all")
@@ -75,7 +79,12 @@ def draw(mode):
     reader = Xdmf3ReaderT(FileName=[f"{run}/trajectory.xmf"])
     view = sphere_view(width, height)
     middle = (lo[1] + hi[1]) / 2
-    if mode == "cutaway":
+    if mode == "section":
+        middle_z = (lo[2] + hi[2]) / 2
+        shown = keep(reader, f"abs(coordsZ-({middle_z!r}))", 0.0, SECTION_HALF_THICKNESS, "slab")
+        direction, up = (0, 0, -1), (0, 1, 0)
+        chosen = np.abs(x[:, 2] - middle_z) <= SECTION_HALF_THICKNESS
+    elif mode == "cutaway":
         if drum:
             shown, direction, up = keep(reader, "coordsX", -1e30, 0.0, "cut"), (-1, -0.45, -0.35), (0, 1, 0)
             chosen = x[:, 0] <= 0
@@ -88,13 +97,19 @@ def draw(mode):
         shown = keep(reader, "species", k - 0.5, k + 0.5, "chosen")
         direction, up = ((-1, 0, 0), (0, 1, 0)) if drum else ((0, 0, -1), (0, 1, 0))
         chosen = species == k
-    if drum:
+    if drum and mode == "section":
+        radius = parameter(run, "diameter") / 2
+        content = ring(radius, middle_z, n=256)
+        circle = Show(PolyLineSource(Points=list(content.ravel()), Closed=1), view)  # the wall, edge on
+        flat(circle)
+        circle.ColorArrayName = ["POINTS", ""]
+        circle.AmbientColor = circle.DiffuseColor = [WALL_GREY] * 3
+        circle.LineWidth = 2
+        pad = 0.0
+    elif drum:
         radius = parameter(run, "diameter") / 2
         cylinder_wall(view, radius, lo[2], hi[2])
-        # The drum is the content: its rims (the far half's, cut away).
-        content = np.concatenate([ring(radius, z) for z in (lo[2], hi[2])])
-        if mode == "cutaway":
-            content = content[content[:, 0] <= 1e-9]
+        content = np.concatenate([ring(radius, z) for z in (lo[2], hi[2])])  # the drum, wall and all
         pad = 0.0
     else:
         y0 = middle if mode == "cutaway" else lo[1]

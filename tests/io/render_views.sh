@@ -27,7 +27,7 @@ render_and_check() {  # RUN VIEW SIZE; pvbatch's own lines on failure
 }
 # A drum long enough for a cut-away worth checking (two species).
 run rotating-drum --preset tiny --set bodies=200 --set length=40 --set output.every=100 -o "$dir/drum"
-for v in particles cutaway big_grains small_grains; do render_and_check drum $v 500x500; done
+for v in particles cutaway section big_grains small_grains; do render_and_check drum $v 500x500; done
 run vibrated-sawtooth --preset tiny -o "$dir/sawtooth"
 for v in cutaway big_grains; do render_and_check sawtooth $v 500x400; done
 run taylor-couette --preset tiny -o "$dir/tc"

@@ -16,7 +16,7 @@ of the view script:
     and leaves its border free;
   - field views (rolls, convection): as before, flat colours at cell centres and line points.
 usage: render_check.py RUN_DIR PNG VIEW
-views: particles capsid capsid_early quadrant cutaway big_grains small_grains rolls
+views: particles capsid capsid_early quadrant cutaway section big_grains small_grains rolls
        convection_above convection_oblique convection_below"""
 import json
 import sys
@@ -230,7 +230,7 @@ f = h5py.File(f"{run}/trajectory.h5", "r")
 scene = f["parameters"].attrs["scene"].decode()
 size = cam.get("point_size", 6)
 pixels = cam.get("pixels_per_unit")
-if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "capsid_early"):
+if view in ("particles", "quadrant", "cutaway", "section", "big_grains", "small_grains", "capsid_early"):
     g = f["particles/all"]
     frames = len(g["position/value"])
     frame = min(1, frames - 1) if view == "capsid_early" else -1
@@ -240,7 +240,7 @@ if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "c
     radius = d / 2 * pixels
     shown = np.ones(len(x), bool)
     hidden = None
-    walls = view in ("quadrant", "cutaway", "big_grains", "small_grains")
+    walls = view in ("quadrant", "cutaway", "section", "big_grains", "small_grains")
     if view == "particles":
         colour = SPECIES[species % len(SPECIES)]
     elif view == "quadrant":
@@ -249,9 +249,12 @@ if view in ("particles", "quadrant", "cutaway", "big_grains", "small_grains", "c
         vr = (x[:, 0] * v[:, 0] + x[:, 1] * v[:, 1]) / r
         a = np.percentile(np.abs(vr), 98)
         colour = ramp(DIVERGING, -a, a, vr)
-    elif view in ("cutaway", "big_grains", "small_grains"):
+    elif view in ("cutaway", "section", "big_grains", "small_grains"):
         colour = np.where((species == 1)[:, None], BIG_RED, SMALL_YELLOW)
-        if view == "cutaway" and scene == "rotating-drum":  # the near half (x > 0) cut away
+        if view == "section":  # grains within 1.5 of the middle cross-section
+            z_lo = g["box/offset"][2]
+            shown = np.abs(x[:, 2] - (z_lo + g["box/edges/value"][-1][2][2] / 2)) <= 1.5
+        elif view == "cutaway" and scene == "rotating-drum":  # the near half (x > 0) cut away
             shown = x[:, 0] <= 0
         elif view == "cutaway":  # the sawtooth's front half (y below the middle) cut away
             lo = g["box/offset"][:]
