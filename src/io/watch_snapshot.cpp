@@ -2,6 +2,7 @@
 // The watch snapshot: a whole new file each time, renamed over the last.
 #include "io/watch_snapshot.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,21 +14,23 @@
 
 namespace emergent::io {
 
-void WatchSnapshot::Series::add(long long s, double t, double v) {
+void WatchSnapshot::Series::add(long long s, double t, const std::vector<double>& v) {
+    if (width == 0) width = v.size();
+    if (v.size() != width) return;  // a measure whose length changed: its history keeps the first
     if (seen++ % stride != 0) return;
     step.push_back(s);
     time.push_back(t);
-    value.push_back(v);
+    value.insert(value.end(), v.begin(), v.end());
     if (step.size() < kMaxPoints) return;
     for (std::size_t k = 0; 2 * k < step.size(); ++k) {
         step[k] = step[2 * k];
         time[k] = time[2 * k];
-        value[k] = value[2 * k];
+        std::copy_n(value.begin() + 2 * k * width, width, value.begin() + k * width);
     }
     const std::size_t kept = (step.size() + 1) / 2;
     step.resize(kept);
     time.resize(kept);
-    value.resize(kept);
+    value.resize(kept * width);
     stride *= 2;
 }
 
@@ -47,7 +50,7 @@ void WatchSnapshot::on_measures(long long step, double time, const Measures& mea
     if (!active()) return;
     for (const auto& [name, value] : measures) {
         latest_[name] = value;
-        if (value.size() == 1) history_[name].add(step, time, value[0]);
+        if (!value.empty() && value.size() <= kMaxHistoryWidth) history_[name].add(step, time, value);
     }
     changed_ = true;
 }
@@ -121,7 +124,10 @@ void WatchSnapshot::write_contents(hid_t file, long long step, double time, bool
             const std::vector<hsize_t> n = {s.step.size()};
             write_whole(group, "step", H5T_NATIVE_LLONG, n, s.step.data());
             write_doubles(group, "time", n, s.time.data());
-            write_doubles(group, "value", n, s.value.data());
+            if (s.width == 1)
+                write_doubles(group, "value", n, s.value.data());
+            else
+                write_doubles(group, "value", {n[0], hsize_t(s.width)}, s.value.data());
         }
         H5Id latest = create_group(file, "latest");
         for (const auto& [name, v] : latest_) write_doubles(latest, name, {v.size()}, v.data());

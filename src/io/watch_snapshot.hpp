@@ -19,14 +19,17 @@ namespace emergent::io {
 ///   attributes scene, step, time, final (1 once the run has ended);
 ///   /fields/<grid>/{density, velocity, temperature, count}: the latest frame of each field
 ///     grid, shaped as one frame of fields.h5, with the grid's attributes;
-///   /measures/<name>/{step, time, value}: the history of each scalar measure (observables and
-///     the scene's), at most kMaxPoints samples: when full, every other sample is dropped and
-///     later ones are kept at half the rate, so a long run's history stays small and spans it all;
+///   /measures/<name>/{step, time, value}: the history of each measure of at most
+///     kMaxHistoryWidth components (observables and the scene's; value [n] for a scalar,
+///     [n, components] for a short vector such as a segregation index with its random-mixture
+///     sd), at most kMaxPoints samples: when full, every other sample is dropped and later ones
+///     are kept at half the rate, so a long run's history stays small and spans it all;
 ///   /latest/<name>: the last value of every measure, vectors included.
 /// Written at most once per `seconds` of wall time (0: never) and at the end.
 class WatchSnapshot {
 public:
     static constexpr std::size_t kMaxPoints = 2048;
+    static constexpr std::size_t kMaxHistoryWidth = 4;
 
     WatchSnapshot(std::string dir, std::string scene, std::vector<FieldGrid> grids, double seconds);
 
@@ -39,9 +42,10 @@ public:
 private:
     struct Series {
         std::vector<long long> step;
-        std::vector<double> time, value;
+        std::vector<double> time, value;  ///< value: `width` numbers per sample
+        std::size_t width = 0;
         long long seen = 0, stride = 1;
-        void add(long long s, double t, double v);
+        void add(long long s, double t, const std::vector<double>& v);
     };
     void write(long long step, double time, bool final) const;
     void write_contents(hid_t file, long long step, double time, bool final) const;

@@ -3,8 +3,9 @@
 # exactly the run's last field frames and measures (tests/support/snapshot_check.py); a long
 # history is thinned to at most 2048 samples spanning the run; a reader that opens the file
 # over and over while the run rewrites it never fails (it is replaced whole by a rename); with
-# output.snapshot_seconds=0 there is none; scripts/watch draws watch.png for each kind of field
-# slice, follows a running job until it ends, and refuses bad input in one line (status 2).
+# output.snapshot_seconds=0 there is none; a short vector measure keeps its whole history;
+# scripts/watch draws watch.png, both panels, for each kind of field slice and for a run without
+# fields, follows a running job until it ends, and refuses bad input in one line (status 2).
 # usage: watch_snapshot.sh EMERGENT
 set -euo pipefail
 exe=$1
@@ -20,6 +21,11 @@ mpirun -q --oversubscribe -np 2 "$exe" run rayleigh-benard --preset tiny --set f
 /usr/bin/python3 "$check" "$dir/rb"
 "$exe" run capsid-assembly --preset tiny --set steps=200 $often -o "$dir/capsid" >/dev/null
 /usr/bin/python3 "$check" "$dir/capsid"
+# The drum's phenomenon is a short vector (core index, its random-mixture sd, their ratio): its
+# history is kept whole (the check compares every component with the run's own).
+"$exe" run rotating-drum --preset tiny $often -o "$dir/drum" >/dev/null
+/usr/bin/python3 "$check" "$dir/drum" | tee "$dir/drum.check"
+grep -q ", [1-9][0-9]* of short vectors" "$dir/drum.check" || { echo "FAIL: no short vector's history"; exit 1; }
 # 5000 samples: thinned to between 1024 and 2048.
 "$exe" run rayleigh-benard --preset tiny --set sample_every=1 --set steps=5000 $often -o "$dir/long" >/dev/null
 /usr/bin/python3 "$check" "$dir/long" 1024
@@ -61,13 +67,18 @@ PY
 "$root/scripts/watch" "$dir/race" --every 0.2 >/dev/null
 wait $run_pid
 /usr/bin/python3 "$check" "$dir/race" 1024
-for run in tc rb capsid race; do
+# Both panels drawn on (a run without fields shows its other measures on the left).
+for run in tc rb capsid drum race; do
   rm -f "$dir/$run/watch.png"
   "$root/scripts/watch" "$dir/$run" --once >/dev/null
-  /usr/bin/python3 -c "import matplotlib.image as m, sys; a=m.imread(sys.argv[1]); sys.exit(int(a.shape[0] < 300 or a[..., :3].std() < 0.05))" "$dir/$run/watch.png" ||
-    { echo "FAIL: $run/watch.png missing or blank"; exit 1; }
+  /usr/bin/python3 -c "
+import matplotlib.image as m, sys
+a = m.imread(sys.argv[1])[..., :3]
+halves = (a[:, : a.shape[1] // 2], a[:, a.shape[1] // 2:])
+sys.exit(int(a.shape[0] < 300 or any(h.std() < 0.05 or (h.min(axis=2) < 0.6).mean() < 0.01 for h in halves)))" "$dir/$run/watch.png" ||
+    { echo "FAIL: $run/watch.png missing, or a panel blank"; exit 1; }
 done
-echo "ok: watch.png drawn for taylor-couette, rayleigh-benard (1 rank and 2), capsid-assembly"
+echo "ok: watch.png drawn, both panels, for taylor-couette, rayleigh-benard (1 rank and 2), capsid-assembly, rotating-drum"
 for bad in "" "$dir/nosuch" "$dir/none" "$dir/tc --every -1" "$dir/tc --nosuch"; do
   rc=0
   err=$("$root/scripts/watch" $bad 2>&1 >/dev/null) || rc=$?

@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Checks a run's snapshot.h5 (the watch snapshot) against the run's own files: every field
 grid's frame equals the last frame of fields.h5 exactly, the last value of every measure equals
-the last sample of the same observable in trajectory.h5, histories are increasing in step and
-at most 2048 long, and the snapshot is marked final at the run's last step.
+the last sample of the same observable in trajectory.h5, every history sample (each component of
+a short vector's) equals the run's own at its step, histories are increasing in step and at most
+2048 long, and the snapshot is marked final at the run's last step.
 usage: snapshot_check.py RUN_DIR [MIN_HISTORY]"""
 import sys
 
@@ -40,7 +41,7 @@ for name in s["latest"]:
     if not np.array_equal(np.ravel(s["latest"][name][:]), np.ravel(t[f"observables/{name}/value"][-1]), equal_nan=True):
         problems.append(f"latest/{name} differs from the run's last {name}")
     measures += 1
-longest = 0
+longest = vectors = 0
 for name in s["measures"]:
     step = s[f"measures/{name}/step"][:]
     longest = max(longest, len(step))
@@ -48,11 +49,15 @@ for name in s["measures"]:
         problems.append(f"measures/{name}: {len(step)} samples or steps not increasing")
     obs = t[f"observables/{name}"]
     k = np.searchsorted(obs["step"][:], step)
-    if np.any(obs["step"][:][k] != step) or not np.array_equal(obs["value"][:].reshape(len(obs["step"]), -1)[k, 0],
-                                                                s[f"measures/{name}/value"][:], equal_nan=True):
+    history = s[f"measures/{name}/value"][:]
+    recorded = obs["value"][:].reshape(len(obs["step"]), -1)[k]  # every component of a short vector
+    if np.any(obs["step"][:][k] != step) or not np.array_equal(recorded, history.reshape(len(step), -1),
+                                                                equal_nan=True):
         problems.append(f"measures/{name}: a sample differs from the run's {name} at its step")
+    vectors += history.ndim == 2
 if longest < min_history or measures == 0:
     problems.append(f"histories up to {longest} samples (want >= {min_history}), {measures} measures")
 if problems:
     sys.exit("FAIL: " + "; ".join(problems))
-print(f"ok: {fields} field arrays, {measures} measures as the run's own files; histories up to {longest}")
+print(f"ok: {fields} field arrays, {measures} measures as the run's own files; histories up to {longest}, "
+      f"{vectors} of short vectors")
