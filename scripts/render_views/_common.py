@@ -245,7 +245,7 @@ def annotate(view, framing, unit, lut=None, title="", time=True):
         categories = bool(lut.InterpretValuesAsCategories)
         bar.TextPosition = ("Ticks left/bottom, annotations right/top" if categories
                             else "Ticks right/top, annotations left/bottom")
-        bar.AutomaticLabelFormat, bar.LabelFormat, bar.RangeLabelFormat = 0, "%-#.2g", "%-#.2g"
+        bar.AutomaticLabelFormat, bar.LabelFormat, bar.RangeLabelFormat = 0, "%-#.3g", "%-#.3g"
         bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
         bar.TitleFontSize = bar.LabelFontSize = 14
         bar.Visibility = 1

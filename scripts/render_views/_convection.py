@@ -1,8 +1,9 @@
 """Shared by the convection views: rayleigh-benard's flow as stream lines of the coarse-grained
 velocity (the run's `fields.grid` box grid, cell averages interpolated to the grid's nodes),
 started from 200 points spread through the layer, coloured by the local temperature (blue cold,
-yellow, red hot over the frame's range of cell temperatures), flat-shaded, orthographic. The
-stream lines' points and temperatures are saved beside each image (PREFIX.lines.csv)."""
+yellow, red hot over the frame's range of cell temperatures), flat-shaded, orthographic, framed
+on the layer beside the strip with the temperature scale, a scale bar and the time. The stream
+lines' points and temperatures are saved beside each image (PREFIX.lines.csv)."""
 import os
 import sys
 
@@ -12,7 +13,8 @@ from paraview.simple import (CellDatatoPointData, ExtractBlock, MergeBlocks, Ren
                              Show, StreamTracer, Xdmf3ReaderT)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _common import THERMAL, colour_by_range, flat, flat_view, save_state, set_camera, write_camera  # noqa: E402
+from _common import (THERMAL, annotate, colour_by_range, corners, flat, flat_view, frame_content,  # noqa: E402
+                     save_state, write_camera)
 
 DIRECTIONS = {"above": ((0, 0, -1), (0, 1, 0)), "below": ((0, 0, 1), (0, 1, 0)),
               "oblique": ((-0.6, -1.0, -0.8), (0, 0, 1))}
@@ -45,7 +47,8 @@ def draw(side):
     shown.LineWidth = LINE_WIDTH
     flat(shown)
     direction, up = DIRECTIONS[side]
-    set_camera(view, lo, hi, width, height, direction, up)
+    framing = frame_content(view, corners(lo, hi), width, height, direction, up)
+    strip = None
     times = list(reader.TimestepValues) or [0.0]
     frames = range(len(times)) if which == "all" else [len(times) - 1]
     if os.environ.get("EMERGENT_SAVE_STATE"):
@@ -55,13 +58,15 @@ def draw(side):
         return
     for k, frame in enumerate(frames):
         t_lo, t_hi = float(temperature[frame].min()), float(temperature[frame].max())
-        colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))
+        lut = colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))
+        if strip is None:
+            strip = annotate(view, framing, "sigma", lut, "temperature")
         view.ViewTime = times[frame]
         Render(view)
         name = f"{prefix}{k:06d}" if which == "all" else prefix
         SaveScreenshot(f"{name}.png", view, ImageResolution=[width, height])
         write_camera(view, f"{name}.camera.json", width, height,
-                     {"line_width": LINE_WIDTH, "temperature_range": [t_lo, t_hi]})
+                     {**strip, "line_width": LINE_WIDTH, "temperature_range": [t_lo, t_hi]})
         if which != "all":
             SaveData(f"{name}.lines.csv", proxy=lines, PointDataArrays=["temperature"])
     print(f"{len(frames)} image(s) of {run}")

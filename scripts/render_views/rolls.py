@@ -3,19 +3,21 @@ colour plots: the (r, z) plane of the scene's `flow` field grid (theta-averaged 
 coloured by the azimuthal vorticity w = dv_r/dz - dv_z/dr of the secondary flow (red one sense of
 rotation, blue the other, light grey none; the scale +-max|w| of the frame shown last), with
 black contours of the mass stream function psi = integral of rho r v_z dr (the stream lines of
-the rolls). r runs to the right, z up; flat-shaded, orthographic.
+the rolls). r runs to the right, z up, on labelled axes; flat-shaded, orthographic; the strip
+holds the vorticity scale, a scale bar and the field frame's time.
 usage: pvbatch rolls.py RUN_DIR OUT_PREFIX all|last WIDTH HEIGHT"""
 import os
 import sys
 
 import h5py
 import numpy as np
-from paraview.simple import Contour, Hide, Show, TrivialProducer
+from paraview.simple import Contour, Hide, Show, Text, TrivialProducer
 from vtkmodules.util import numpy_support
 from vtkmodules.vtkCommonDataModel import vtkImageData
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from _common import DIVERGING, colour_by_range, flat, flat_view, top_camera, write_camera  # noqa: E402
+from _common import (DIVERGING, annotate, colour_by_range, corners, flat, flat_view, frame_content,  # noqa: E402
+                     write_camera)
 from paraview.simple import Render, SaveScreenshot  # noqa: E402
 
 
@@ -27,11 +29,12 @@ def roll_frames(run):
         rho = g["density/value"][:].mean(axis=2)
         r_edges = np.linspace(g.attrs["r_min"], g.attrs["r_max"], v.shape[2] + 1)
         z_edges = np.linspace(g.attrs["lo"][2], g.attrs["hi"][2], v.shape[1] + 1)
+        times = g["velocity/time"][:]
     r = (r_edges[1:] + r_edges[:-1]) / 2
     dr, dz = r_edges[1] - r_edges[0], z_edges[1] - z_edges[0]
     vort = np.gradient(v[..., 0], dz, axis=1) - np.gradient(v[..., 2], dr, axis=2)
     psi = np.cumsum(rho * r[None, None, :] * v[..., 2], axis=2) * dr
-    return r_edges, z_edges, vort, psi
+    return r_edges, z_edges, vort, psi, times
 
 
 def image(origin, spacing, dims, name, values, cells):
@@ -48,13 +51,27 @@ def image(origin, spacing, dims, name, values, cells):
 
 
 run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
-r_edges, z_edges, vort, psi = roll_frames(run)
+r_edges, z_edges, vort, psi, times = roll_frames(run)
 a = max(float(np.abs(vort[-1]).max()), 1e-12)
 dr, dz = r_edges[1] - r_edges[0], z_edges[1] - z_edges[0]
 nz, nr = vort.shape[1:]
 view = flat_view(width, height)
 lo, hi = np.array([r_edges[0], z_edges[0], 0.0]), np.array([r_edges[-1], z_edges[-1], 0.0])
-top_camera(view, lo, hi, width, height)
+# Room around the map for the axes' ticks and titles (a tenth of its larger side).
+framing = frame_content(view, corners(lo, hi), width, height, (0, 0, -1), (0, 1, 0), pad=0.1 * float(np.max(hi - lo)))
+view.AxesGrid.Visibility = 1
+view.AxesGrid.XTitle, view.AxesGrid.YTitle = "r (sigma)", "z (sigma)"
+view.AxesGrid.ShowGrid = 0
+for part in ("XTitleColor", "YTitleColor", "XLabelColor", "YLabelColor", "GridColor"):
+    setattr(view.AxesGrid, part, [0.0, 0.0, 0.0])
+view.AxesGrid.AxesToLabel = 1 | 2  # the edges at min y (r, below) and min x (z, on the left)
+view.AxesGrid.UseCustomBounds = 1  # the map's, not the scale bar's
+view.AxesGrid.CustomBounds = [r_edges[0], r_edges[-1], z_edges[0], z_edges[-1], 0.0, 0.0]
+clock = Show(Text(Text=""), view)
+clock.WindowLocation = "Any Location"
+clock.Position = [1 - framing["strip"] + 0.04, 0.06]
+clock.Color, clock.FontSize = [0.0, 0.0, 0.0], 14
+strip = None
 frames = range(len(vort)) if which == "all" else [len(vort) - 1]
 shown = []
 for k, frame in enumerate(frames):
@@ -64,7 +81,10 @@ for k, frame in enumerate(frames):
     map_shown = Show(cells, view)
     map_shown.SetRepresentationType("Surface")
     flat(map_shown)
-    colour_by_range(map_shown, "CELLS", "vorticity", DIVERGING, -a, a)
+    lut = colour_by_range(map_shown, "CELLS", "vorticity", DIVERGING, -a, a)
+    if strip is None:
+        strip = annotate(view, framing, "sigma", lut, "vorticity", time=False)
+    clock.Input.Text = f"t = {times[frame]:.1f} tau"
     shown = [cells]
     if nr > 1 and nz > 1 and np.ptp(psi[frame]) > 0:
         centres = image((r_edges[0] + dr / 2, z_edges[0] + dz / 2), (dr, dz), (nr, nz), "psi", psi[frame], False)
@@ -80,5 +100,5 @@ for k, frame in enumerate(frames):
     Render(view)
     name = f"{prefix}{k:06d}" if which == "all" else prefix
     SaveScreenshot(f"{name}.png", view, ImageResolution=[width, height])
-    write_camera(view, f"{name}.camera.json", width, height, {"scale": a})
+    write_camera(view, f"{name}.camera.json", width, height, {**strip, "scale": a})
 print(f"{len(frames)} image(s) of {run}")

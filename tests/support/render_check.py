@@ -54,10 +54,11 @@ def project(x):
     return col - 0.5, row - 0.5, depth
 
 
-def check_points(x, colour, shown, size, hidden=None, tolerance=0.02, only=None):
+def check_points(x, colour, shown, size, hidden=None, tolerance=0.02, only=None, may_be_blank=None):
     """Colour at uncovered shown points, background at uncovered hidden points; returns
     (checked, good, hidden_checked, hidden_good, far-from-points mask); `only`: the points to
-    check (default all), every shown point may cover them."""
+    check (default all), every shown point may cover them; `may_be_blank`: points whose pixel
+    may be background instead."""
     col, row, depth = project(x)
     hidden = ~shown if hidden is None else hidden
     checked = good = hidden_checked = hidden_good = 0
@@ -74,7 +75,8 @@ def check_points(x, colour, shown, size, hidden=None, tolerance=0.02, only=None)
                 continue  # a nearer shown point may cover it
             checked += 1
             wanted = np.reshape(colour[i], (-1, 1, 3))  # one colour, or any of several
-            good += np.any(np.all(np.abs(patch[None] - wanted) < tolerance, axis=2))
+            good += (np.any(np.all(np.abs(patch[None] - wanted) < tolerance, axis=2))
+                     or (may_be_blank is not None and may_be_blank[i] and np.all(img[r, k] > 0.98)))
         elif hidden[i] and not np.any(shown & (np.maximum(np.abs(col - col[i]), np.abs(row - row[i])) < reach + 1.5)):
             hidden_checked += 1
             hidden_good += np.all(patch > 0.98)
@@ -354,12 +356,17 @@ elif view.startswith("convection_"):
     # Lines cover pixels between their points too: consecutive rows of one line (a step of at
     # most 0.1 cell apart) get 4 points in between, which may cover but are not checked.
     step = np.linalg.norm(np.diff(x, axis=0), axis=1)
-    joined = np.nonzero(step < 0.2 * np.max((hi - lo) / g.attrs["shape"]) + 1e-9)[0]
+    linked = step < 0.2 * np.max((hi - lo) / g.attrs["shape"]) + 1e-9
+    joined = np.nonzero(linked)[0]
+    # A line's last point may show the background instead: the drawn line may stop short of it
+    # (seen: the 3x3 pixels around a line's last point all background, the line ending before).
+    last = ~np.r_[linked, False]
     between = np.concatenate([x[joined] + f * (x[joined + 1] - x[joined]) for f in (0.2, 0.4, 0.6, 0.8)])
     x = np.r_[x, between]
     colour = np.r_[colour, np.zeros((len(between), len(span), 3))]
     c, gd, hc, hg, far = check_points(x, colour, np.ones(len(x), bool), cam["line_width"],
-                                      np.zeros(len(x), bool), 0.03, only=keep)
+                                      np.zeros(len(x), bool), 0.03, only=keep,
+                                      may_be_blank=np.r_[last, np.zeros(len(between), bool)])
     verdict(c, gd, hc, hg, np.zeros_like(far), "stream line points")
 else:
     sys.exit(f"render_check.py: no check for view '{view}'")
