@@ -234,6 +234,7 @@ def annotate(view, framing, unit, lut=None, title="", time=True):
     unit). Black on white, the text in the strip only. Returns what the camera file records."""
     width, height, strip = framing["width"], framing["height"], framing["strip"]
     left = 1 - strip
+    font = max(8, min(14, int(strip * width / 9)))  # "t = 1234.5 tau" fits the strip
     if lut is not None:
         bar = GetScalarBar(lut, view)
         bar.Title, bar.ComponentTitle = title, ""
@@ -247,7 +248,7 @@ def annotate(view, framing, unit, lut=None, title="", time=True):
                             else "Ticks right/top, annotations left/bottom")
         bar.AutomaticLabelFormat, bar.LabelFormat, bar.RangeLabelFormat = 0, "%-#.3g", "%-#.3g"
         bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]
-        bar.TitleFontSize = bar.LabelFontSize = 14
+        bar.TitleFontSize = bar.LabelFontSize = font
         bar.Visibility = 1
     # The scale bar, on the picture's focal plane, centred in the strip at 30 % of the height
     # (its label below it).
@@ -263,15 +264,15 @@ def annotate(view, framing, unit, lut=None, title="", time=True):
     shown.LineWidth = 3
     label = Show(Text(Text=f"{length:g} {unit}"), view)
     label.WindowLocation = "Any Location"
-    label.Position = [left + 0.04, 0.22]
-    label.Color, label.FontSize = [0.0, 0.0, 0.0], 14
+    label.Position = [left + 0.02, 0.22]
+    label.Color, label.FontSize = [0.0, 0.0, 0.0], font
     if time:
         clock = AnnotateTime()
         clock.Format = "t = {time:.1f}" + (" tau" if unit == "sigma" else "")
         shown = Show(clock, view)
         shown.WindowLocation = "Any Location"
-        shown.Position = [left + 0.04, 0.06]
-        shown.Color, shown.FontSize = [0.0, 0.0, 0.0], 14
+        shown.Position = [left + 0.02, 0.06]
+        shown.Color, shown.FontSize = [0.0, 0.0, 0.0], font
     return {"strip": [int(np.floor(left * width)), 0, width, height], "pixels_per_unit": pixels,
             "scale_bar": length}
 

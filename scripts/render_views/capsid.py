@@ -2,8 +2,8 @@
 solvent hidden: every capsomer in a cluster of two or more, from above (+z looking down),
 orthographic, each capsomer a lit sphere whose diameter is the median distance between
 neighbouring capsomers in those clusters (so neighbours touch, as their spheres do), complete
-shells (clusters of 60) dark blue, incomplete clusters light orange; framed on the clusters, with
-the legend, a scale bar and the time. Reads trajectory.bodies.xmf and its cluster_size array.
+shells (clusters of 60) dark blue, incomplete clusters light orange; a still framed on the
+clusters, a movie on the box; with the legend, a scale bar and the time. Reads trajectory.bodies.xmf and its cluster_size array.
 usage: pvbatch capsid.py RUN_DIR OUT_PREFIX all|last WIDTH HEIGHT"""
 import os
 import sys
@@ -48,7 +48,8 @@ view = sphere_view(width, height)
 shown = Show(complete, view)
 spheres(shown, diameter)
 lut = colour_by_value(shown, "complete", {0: PARTIAL_RGB, 1: SHELL_RGB}, {0: "2-59", 1: "shell (60)"})
-camera = framed(view, run, clustered if len(clustered) else corners(lo, hi), width, height, (0, 0, -1), (0, 1, 0),
-                lut, "clusters", pad=diameter / 2)
+# A still is framed on the clusters; a movie on the box, through which they drift (and wrap).
+content = clustered if len(clustered) and which != "all" else corners(lo, hi)
+camera = framed(view, run, content, width, height, (0, 0, -1), (0, 1, 0), lut, "clusters", pad=diameter / 2)
 n = render_frames(view, reader, prefix, which, width, height, extra={**camera, "diameter": diameter})
 print(f"{n} image(s) of {run}")

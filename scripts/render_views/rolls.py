@@ -69,8 +69,8 @@ view.AxesGrid.UseCustomBounds = 1  # the map's, not the scale bar's
 view.AxesGrid.CustomBounds = [r_edges[0], r_edges[-1], z_edges[0], z_edges[-1], 0.0, 0.0]
 clock = Show(Text(Text=""), view)
 clock.WindowLocation = "Any Location"
-clock.Position = [1 - framing["strip"] + 0.04, 0.06]
-clock.Color, clock.FontSize = [0.0, 0.0, 0.0], 14
+clock.Position = [1 - framing["strip"] + 0.02, 0.06]
+clock.Color, clock.FontSize = [0.0, 0.0, 0.0], max(8, min(14, int(framing["strip"] * width / 9)))
 strip = None
 frames = range(len(vort)) if which == "all" else [len(vort) - 1]
 shown = []
