@@ -10,7 +10,9 @@
 #     before it writes anything there;
 #  5. a job requeued after its node failed (simulated: the first start's run, stopped with a
 #     checkpoint, and its line in the chain's log; SLURM_RESTART_COUNT given to the job)
-#     continues from that checkpoint, bit for bit the uninterrupted run.
+#     continues from that checkpoint, bit for bit the uninterrupted run;
+#  6. a job cancelled as the script says (scancel --signal=TERM --batch) stops with a
+#     checkpoint and submits nothing: the chain ends there.
 # Then it tears it all down. Needs Debian's slurmctld slurmd slurm-client munge, which
 # `scripts/setup --tests` installs (the README's test command): missing, the test fails.
 # EMERGENT_TEST_SLURM=0 skips it (exit 77, reported as skipped). Facts it relies on:
@@ -178,3 +180,20 @@ if ! grep -q "requeued: continues from its first start's checkpoint" "$work/requ
 fi
 /usr/bin/python3 "$root/tests/support/same_last_frame.py" "$work/straight/trajectory.h5" \
   "$(ls "$work"/requeued/trajectory.from*.h5)" "the requeued job continued from its first start's checkpoint"
+
+# 6. A cancelled job (SIGTERM to the batch script): the run checkpoints, and nothing is
+# submitted after it.
+cancelled=$(sbatch --parsable "${yield[@]}" -n 2 --time=5 -o "$work/cancelled.out" -D "$work" \
+  "$root/scripts/slurm/emergent.sbatch" "${run_args[@]}" -o "$work/cancelled")
+for _ in $(seq 200); do [ -f "$work/cancelled/trajectory.h5" ] && break; sleep 0.1; done
+sleep 1
+scancel --signal=TERM --batch "$cancelled"
+for _ in $(seq 240); do squeue -h -j "$cancelled" 2>/dev/null | grep -q . || break; sleep 0.5; done
+sleep 2  # a successor, had one been submitted, would be queued by now
+cat "$work/cancelled/slurm_chain.log"
+if ! grep -q "^job $cancelled: cancelled at step [0-9]* (SIGTERM): not resubmitted" "$work/cancelled/slurm_chain.log" ||
+   [ "$(grep -c "began" "$work/cancelled/slurm_chain.log")" != 1 ] || [ -n "$(squeue -h -u "$(id -un)")" ] ||
+   [ ! -f "$work/cancelled/checkpoint.h5" ]; then
+  echo "FAIL: the cancelled job did not stop the chain with a checkpoint"; cat "$work/cancelled.out"; squeue; exit 1
+fi
+echo "ok: a cancelled job checkpointed and submitted nothing"
