@@ -6,7 +6,7 @@ usage: docs_commands.py REPO_ROOT BUILD_DIR
 Reads the ```sh blocks of README.md and docs/**/*.md, and runs each command line (a line ending
 in "\\" goes on on the next) with bash, in the order the page gives them, in a directory of the
 page's own: there `build` is BUILD_DIR and every other top-level entry is a copy of the tree,
-so a command that writes beside a log (scripts/plot_sawtooth_flux_map) changes no tracked file
+so a command that writes into the tree changes no tracked file
 and `out/...` starts empty. A command that takes minutes, needs a cluster, LAMMPS or a display,
 or follows one that does, must say so at its end: `# long...` or `# interactive...`; it is
 counted, not run. Any other command that fails, or runs past TIMEOUT_S, fails the test, named
