@@ -328,15 +328,20 @@ def write_camera(view, path, width, height, extra=None):
                    **(extra or {})}, out)
 
 
-def render_frames(view, reader, prefix, which, width, height, times=None, extra=None):
+def render_frames(view, reader, prefix, which, width, height, times=None, extra=None, at_time=None):
     """Saves the last frame as PREFIX.png or every frame as PREFIXNNNNNN.png, each with its
-    .camera.json (with `extra`, e.g. the point size). `which` = last | all."""
+    .camera.json (with `extra`, e.g. the point size). `which` = last | all. `at_time(t)`, where
+    given, moves what the data does not hold (a vibrating base) to time t before each frame."""
     times = times if times is not None else (list(reader.TimestepValues) or [0.0])
+    if at_time is not None:
+        at_time(times[-1])
     if save_state(view, times):
         return 0
     chosen = times if which == "all" else times[-1:]
     for k, t in enumerate(chosen):
         view.ViewTime = t
+        if at_time is not None:
+            at_time(t)
         Render(view)
         name = f"{prefix}{k:06d}" if which == "all" else prefix
         SaveScreenshot(f"{name}.png", view, ImageResolution=[width, height])

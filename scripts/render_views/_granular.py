@@ -1,14 +1,15 @@
-"""Shared by the granular views (cutaway, big_grains, small_grains): rotating-drum and
+"""Shared by the granular views (cutaway, section, big_grains, small_grains): rotating-drum and
 vibrated-sawtooth runs, big grains (species 1) red and small (species 0) yellow as in the paper,
-spheres at their true diameters, the container drawn behind them (the drum's wall, translucent;
-the sawtooth's base at its rest level), framed on the container, with the legend, a scale bar and
-the time."""
+spheres at their true diameters, the container drawn behind them (the drum's wall, translucent,
+or its circle in the section; the sawtooth's base where its vibration has it in each frame),
+framed on the container, with the legend, a scale bar and the time."""
 import os
 import sys
 
 import h5py
 import numpy as np
-from paraview.simple import Calculator, LinearExtrusion, PolyLineSource, Show, Threshold, Xdmf3ReaderT
+from paraview.simple import (Calculator, LinearExtrusion, PolyLineSource, Show, Threshold, Transform,
+                             Xdmf3ReaderT)
 
 # The section view: the drum's grains within this distance of its middle cross-section.
 SECTION_HALF_THICKNESS = 1.5
@@ -42,10 +43,11 @@ def text(run, name):
 
 
 def sawtooth_base(view, run, lo, hi, y0, y1):
-    """The base's profile through its rods' centres at its rest level (z = 0), teeth of
-    tooth_period and tooth_height along x (gentle edge rising toward +x over gentle_fraction of
-    the period; `mirrored` reflected; `flat` level), from y0 to y1; None for the cylindrical
-    container, whose rings are not drawn."""
+    """The base's profile through its rods' centres, teeth of tooth_period and tooth_height along
+    x (gentle edge rising toward +x over gentle_fraction of the period; `mirrored` reflected;
+    `flat` level), from y0 to y1, and a function of time that moves it to its level
+    z_b(t) = amplitude sin(2 pi frequency t); None for the cylindrical container, whose rings
+    are not drawn."""
     if text(run, "container") != "slot":
         return None
     period, height = parameter(run, "tooth_period"), parameter(run, "tooth_height")
@@ -59,9 +61,15 @@ def sawtooth_base(view, run, lo, hi, y0, y1):
     line = PolyLineSource(Points=sum(([u, y0, z] for u, z in points), []))
     surface = LinearExtrusion(Input=line)
     surface.Vector, surface.ScaleFactor, surface.Capping = [0.0, 1.0, 0.0], y1 - y0, 0
-    shown = wall(view, surface, opacity=1.0)
+    moved = Transform(Input=surface)
+    shown = wall(view, moved, opacity=1.0)
     shown.BackfaceRepresentation = "Follow Frontface"  # seen from above: drawn both sides, opaque
-    return shown
+    amplitude, frequency = parameter(run, "amplitude"), parameter(run, "frequency")
+
+    def at_time(t):
+        moved.Transform.Translate = [0.0, 0.0, amplitude * float(np.sin(2 * np.pi * frequency * t))]
+
+    return at_time
 
 
 def draw(mode):
@@ -97,6 +105,7 @@ def draw(mode):
         shown = keep(reader, "species", k - 0.5, k + 0.5, "chosen")
         direction, up = ((-1, 0, 0), (0, 1, 0)) if drum else ((0, 0, -1), (0, 1, 0))
         chosen = species == k
+    at_time = None
     if drum and mode == "section":
         radius = parameter(run, "diameter") / 2
         content = ring(radius, middle_z, n=256)
@@ -113,14 +122,15 @@ def draw(mode):
         pad = 0.0
     else:
         y0 = middle if mode == "cutaway" else lo[1]
-        sawtooth_base(view, run, lo, hi, y0, hi[1])
-        # The grains shown and the base under them.
-        base = corners([lo[0], y0, -0.5], [hi[0], hi[1], parameter(run, "tooth_height")])
+        at_time = sawtooth_base(view, run, lo, hi, y0, hi[1])
+        # The grains shown and the base under them, at either end of its swing.
+        swing = parameter(run, "amplitude")
+        base = corners([lo[0], y0, -swing - 0.5], [hi[0], hi[1], parameter(run, "tooth_height") + swing])
         content = np.concatenate([x[chosen], base])
         pad = d[chosen].max() / 2 if chosen.any() else 0.0
     out = Show(shown, view)
     spheres(out)
     lut = colour_by_value(out, "species", {0: SMALL_RGB, 1: BIG_RGB}, {0: "small", 1: "big"})
     camera = framed(view, run, content, width, height, direction, up, lut, "grains", pad=pad)
-    n = render_frames(view, reader, prefix, which, width, height, extra=camera)
+    n = render_frames(view, reader, prefix, which, width, height, extra=camera, at_time=at_time)
     print(f"{n} image(s) of {run}")
