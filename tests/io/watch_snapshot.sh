@@ -6,9 +6,10 @@
 # output.snapshot_seconds=0 there is none; a short vector measure keeps its whole history;
 # scripts/watch draws watch.png, both panels, for each kind of field slice and for a run without
 # fields, follows a running job until it ends, and refuses bad input in one line (status 2).
-# usage: watch_snapshot.sh EMERGENT
+# usage: watch_snapshot.sh EMERGENT [MPIRUN]   (MPIRUN: the one CMake found; default mpirun)
 set -euo pipefail
 exe=$1
+mpirun=${2:-mpirun}
 root=$(cd "$(dirname "$0")/../.." && pwd)
 dir=$(mktemp -d)
 trap 'kill $(jobs -p) 2>/dev/null || true; rm -rf "$dir"' EXIT
@@ -17,7 +18,7 @@ check=$root/tests/support/snapshot_check.py
 often="--set output.snapshot_seconds=1e-9 --set progress_interval=0"
 "$exe" run taylor-couette --preset tiny $often -o "$dir/tc" >/dev/null
 /usr/bin/python3 "$check" "$dir/tc"
-mpirun -q --oversubscribe -np 2 "$exe" run rayleigh-benard --preset tiny --set fields.grid=6x6x5 $often -o "$dir/rb" >/dev/null
+"$mpirun" -q --oversubscribe -np 2 "$exe" run rayleigh-benard --preset tiny --set fields.grid=6x6x5 $often -o "$dir/rb" >/dev/null
 /usr/bin/python3 "$check" "$dir/rb"
 "$exe" run capsid-assembly --preset tiny --set steps=200 $often -o "$dir/capsid" >/dev/null
 /usr/bin/python3 "$check" "$dir/capsid"
