@@ -167,19 +167,6 @@ def colour_by_range(shown, association, array, stops, lo, hi):
     return lut
 
 
-def map_colour(stops, lo, hi, value):
-    """The colour colour_by_range gives `value` (numpy, for checks and legends)."""
-    s0, s1 = stops[0][0], stops[-1][0]
-    x = np.clip((np.asarray(value, float) - lo) / (hi - lo), 0, 1) * (s1 - s0) + s0
-    return np.stack([np.interp(x, [s for s, _ in stops], [c[k] for _, c in stops]) for k in range(3)], -1)
-
-
-def point_size(lo, hi, width, height, diameter, direction):
-    """Pixels across a sphere of `diameter` in an orthographic view framing the box (see camera)."""
-    _, _, scale = framing(lo, hi, width, height, direction)
-    return max(2, int(round(diameter * height / (2 * scale))))
-
-
 def frame_content(view, points, width, height, direction, up=None, strip=STRIP, pad=0.0):
     """An orthographic camera looking along `direction` whose picture left of the strip (its
     right `strip` share of the width) is filled by the content, 3 % to spare: `points` [n, 3]
@@ -212,14 +199,6 @@ def view_axes(d, up=None):
     up = up - d * (up @ d)
     up /= np.linalg.norm(up)
     return up, np.cross(d, up)
-
-
-def extents(lo, hi, d, up=None):
-    """Up and right vectors of a view along d, and the box's half extents along them."""
-    up, right = view_axes(d, up)
-    corners = np.array([[x, y, z] for x in (lo[0], hi[0]) for y in (lo[1], hi[1]) for z in (lo[2], hi[2])])
-    c = (np.asarray(lo, float) + np.asarray(hi, float)) / 2
-    return up, right, np.abs((corners - c) @ right).max(), np.abs((corners - c) @ up).max()
 
 
 def nice_length(limit):
@@ -294,28 +273,6 @@ def ring(radius, z, n=128, angle=2 * np.pi):
     return np.c_[radius * np.cos(theta), radius * np.sin(theta), np.full(n, z)]
 
 
-def framing(lo, hi, width, height, direction, up=None):
-    """Camera up vector, right vector and parallel scale for looking along `direction` at the
-    box so that it fills the image."""
-    d = np.asarray(direction, float) / np.linalg.norm(direction)
-    up, right, half_w, half_h = extents(lo, hi, d, up)
-    return up, right, max(half_h, half_w * height / width) * 1.02
-
-
-def set_camera(view, lo, hi, width, height, direction, up=None):
-    """An orthographic camera looking along `direction` at the box's centre, the box in frame
-    (the first render must not reset the camera to the data's bounds)."""
-    _DisableFirstRenderCameraReset()
-    d = np.asarray(direction, float) / np.linalg.norm(direction)
-    up, _, scale = framing(lo, hi, width, height, d, up)
-    c = (lo + hi) / 2
-    view.CameraParallelProjection = 1
-    view.CameraFocalPoint = list(c)
-    view.CameraPosition = list(c - d * 10 * (np.linalg.norm(hi - lo) + 1))
-    view.CameraViewUp = list(up)
-    view.CameraParallelScale = scale
-
-
 def write_camera(view, path, width, height, extra=None):
     """The world -> normalised-device matrix (x, y in [-1, 1], pixel column (x+1)/2*W, row
     (1-y)/2*H), the camera's position and its direction of projection."""
@@ -358,8 +315,3 @@ def save_state(view, times):
     view.ViewTime = times[-1]
     SaveState(path)
     return True
-
-
-def top_camera(view, lo, hi, width, height):
-    """From above (+z looking down), x right, y up."""
-    set_camera(view, lo, hi, width, height, (0, 0, -1), up=(0, 1, 0))

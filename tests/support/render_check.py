@@ -88,17 +88,24 @@ def check_points(x, colour, shown, size, hidden=None, tolerance=0.02, only=None,
     return checked, good, hidden_checked, hidden_good, far
 
 
-def verdict(checked, good, hidden_checked, hidden_good, far, what, minimum=20):
+def shared_problems(checked, good, hidden_checked, hidden_good, clean, what, minimum):
+    """What every verdict asks: enough points checked, each in its colour (`good` counts those
+    that pass), hidden points not drawn, a clean background away from them (`clean`: its share)."""
     problems = []
-    white = np.all(img[far] > 0.98, axis=1).mean() if far.any() else 1.0
     if checked < minimum:
         problems.append(f"only {checked} uncovered shown {what} to check")
     if good != checked:
         problems.append(f"{checked - good} of {checked} uncovered {what} lack their colour")
     if hidden_good != hidden_checked:
         problems.append(f"{hidden_checked - hidden_good} of {hidden_checked} hidden points were drawn")
-    if white < 0.999:
-        problems.append(f"{1 - white:.2%} of the pixels far from every point are not background")
+    if clean < 0.999:
+        problems.append(f"{1 - clean:.2%} of the pixels far from every point are not background")
+    return problems
+
+
+def verdict(checked, good, hidden_checked, hidden_good, far, what, minimum=20):
+    white = np.all(img[far] > 0.98, axis=1).mean() if far.any() else 1.0
+    problems = shared_problems(checked, good, hidden_checked, hidden_good, white, what, minimum)
     if problems:
         sys.exit(f"FAIL ({view}): " + "; ".join(problems))
     print(f"ok ({view}): {good} of {checked} uncovered {what} in their colour, {hidden_checked} "
@@ -184,23 +191,15 @@ def check_spheres(x, colour, shown, radius, hidden=None, walls=False, veil=None,
 
 def sphere_verdict(checked, good, grey, hidden_checked, hidden_good, widths, widths_good, far, what,
                    walls=False, minimum=20):
-    problems = []
     pixels = img[far]
     background = np.all(pixels > 0.98, axis=1) | (walls & neutral(pixels))
     clean = background.mean() if len(pixels) else 1.0
-    if checked < minimum:
-        problems.append(f"only {checked} uncovered shown {what} to check")
-    if good + grey != checked:
-        problems.append(f"{checked - good - grey} of {checked} uncovered {what} lack their colour")
+    problems = shared_problems(checked, good + grey, hidden_checked, hidden_good, clean, what, minimum)
     if grey > checked / 5:
         problems.append(f"{grey} of {checked} uncovered {what} show a wall's grey instead of their colour")
     if widths_good != widths:
         problems.append(f"{widths - widths_good} of {widths} isolated {what} not drawn at their diameter")
-    if hidden_good != hidden_checked:
-        problems.append(f"{hidden_checked - hidden_good} of {hidden_checked} hidden points were drawn")
-    if clean < 0.999:
-        problems.append(f"{1 - clean:.2%} of the pixels far from every point are not background")
-    problems += framing_problems(walls)
+    problems += framing_problems()
     if problems:
         sys.exit(f"FAIL ({view}): " + "; ".join(problems))
     print(f"ok ({view}): {good} of {checked} uncovered {what} in their colour ({grey} behind a wall), "
@@ -208,15 +207,13 @@ def sphere_verdict(checked, good, grey, hidden_checked, hidden_good, widths, wid
           "clean, framed")
 
 
-def framing_problems(walls):
-    """The drawn content (not background) spans >= 90 % of the picture left of the strip along
-    one axis (the view frames it with 3 % to spare on its longer side) and stays off its
-    outermost 1 % (nothing cut off)."""
+def framing_problems():
+    """The drawn content (anything not white: walls are content too) spans >= 90 % of the
+    picture left of the strip along one axis (the view frames it with 3 % to spare on its longer
+    side) and stays off its outermost 1 % (nothing cut off)."""
     strip = cam["strip"][0]
     part = img[:, :strip]
-    drawn = ~(np.all(part > 0.98, axis=2) | (walls & neutral(part)))
-    if walls:  # walls are content too: anything not white
-        drawn = ~np.all(part > 0.98, axis=2)
+    drawn = ~np.all(part > 0.98, axis=2)
     rows, cols = np.nonzero(drawn)
     if len(rows) == 0:
         return ["nothing drawn"]
