@@ -183,6 +183,10 @@ int main(int argc, char** argv) {
     // intact: "No space left on device"); its default OMPIO prints its own lines instead.
     // A choice made in the environment (OMPI_MCA_io) stands.
     setenv("OMPI_MCA_io", "romio321", 0);
+    // A run alone (no mpirun) starts Open MPI's daemon itself, and hwloc's GL plugin in both
+    // connects to X displays :0-:9 looking for GPUs: slow, and fatal ("X connection to :0
+    // broken") when such a server goes away meanwhile. The engine finds its devices through CUDA.
+    setenv("HWLOC_COMPONENTS", "-gl", 0);
     MPI_Init(&argc, &argv);
     io::silence_h5_error_stack();
     // Failures meet on a communicator of their own (app/failure_report.hpp).
