@@ -609,6 +609,17 @@ ProblemInfo capsid_assembly_info() {
     // the note's rows, in 4 of 8 against none (capsid_hysteresis_2026-12-03.log).
     info.presets["small"] = {{"capsomers", "60"}, {"start", "open_shell"}, {"attraction", "0.062"},
                              {"steps", "100000"}, {"sample_every", "5000"}, {"progress_interval", "60"}};
+    // Shells from monomers on a 2-core machine (docs/scenes/capsid-assembly.md, "From
+    // monomers"): Table 1's particle fraction with 300 capsomers (five shells' worth), the
+    // implicit solvent (no solvent atoms to move; the step holds to 0.02 there, with the list
+    // skin 1.4) and e = 0.12, the one attraction of the logged scan where shells closed (3 of 3
+    // seeds, the first at 20000-46000 tau; 0.11: nothing grows, 0.125-0.13: jammed mid-size
+    // clusters; logs/capsid_depth025_table1_2026-12-05.log). 50000 tau covers those times.
+    info.presets["assembly"] = {{"capsomers", "300"}, {"particle_fraction", "0.033"},
+                                {"solvent", "implicit"}, {"attraction", "0.12"}, {"dt", "0.02"},
+                                {"skin", "1.4"}, {"steps", "2500000"}, {"sample_every", "5000"},
+                                {"output.every", "50000"}, {"checkpoint_every", "250000"},
+                                {"progress_interval", "60"}};
     // The paper's Table 1 system: N = 1.25e5 at p = 0.033 (4125 capsomers), its runs 0.85-3.1e8
     // steps; e is the table's variable (--set attraction=...).
     info.presets["table1"] = {{"capsomers", "4125"}, {"particle_fraction", "0.033"}, {"steps", "150000000"},
