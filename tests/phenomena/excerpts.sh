@@ -1,19 +1,20 @@
 #!/usr/bin/env bash
-# Every phenomenon check passes and fails on stored evidence: for each of the five scenes, an
+# Every phenomenon check passes and fails on stored evidence: for each of the five scenes (the
+# capsid twice: capsid-assembly, its closed shell, and capsid-assembly-monomers), an
 # excerpt of a logged run that shows the phenomenon (benchmarks/logs/phenomena_excerpts/SCENE/
 # pass) must PASS, and one of its control, the same preset and length with the cause taken away
 # (.../control: no attraction, a flat base, a drum at rest, a layer too narrow for a cell,
-# rotation below onset), must FAIL; each verdict must be the one logged when the run ended
+# rotation below onset, half the attraction), must FAIL; each verdict must be the one logged when the run ended
 # (check.log), so the excerpt (scripts/excerpt_run: parameters and observables, no particle
 # frames) holds all the check reads. Each excerpt stays within 1 MiB.
-# usage: excerpts.sh SCRIPTS_DIR EXCERPTS_DIR [SCENE...]   (default: all five)
+# usage: excerpts.sh SCRIPTS_DIR EXCERPTS_DIR [SCENE...]   (default: all six)
 # Exit: 0 every stored excerpt judged as logged and none missing; 1 a verdict or size wrong;
 # 77 (ctest: skipped) every stored one right but some excerpt not stored yet, named.
 set -u
 scripts=$1
 root=$2
 shift 2
-scenes=${*:-taylor-couette rayleigh-benard rotating-drum vibrated-sawtooth capsid-assembly}
+scenes=${*:-taylor-couette rayleigh-benard rotating-drum vibrated-sawtooth capsid-assembly capsid-assembly-monomers}
 failures=0 missing=0
 fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
 for scene in $scenes; do
