@@ -3,7 +3,9 @@ solvent hidden: every capsomer in a cluster of two or more, from above (+z looki
 orthographic, each capsomer a lit sphere whose diameter is the median distance between
 neighbouring capsomers in those clusters (so neighbours touch, as their spheres do), complete
 shells (clusters of 60) dark blue, incomplete clusters light orange; a still framed on the
-clusters, a movie on the box; with the legend, a scale bar and the time. Reads trajectory.bodies.xmf and its cluster_size array.
+clusters, a movie on the box; with the legend, a scale bar and the time. The periodic box is
+drawn shifted so that the last frame's largest cluster sits at its centre, whole, not cut by a
+face. Reads trajectory.bodies.xmf and its cluster_size and cluster arrays.
 usage: pvbatch capsid.py RUN_DIR OUT_PREFIX all|last WIDTH HEIGHT"""
 import os
 import sys
@@ -28,14 +30,37 @@ def capsomer_diameter(x):
     return float(np.median(gaps.min(axis=1)))
 
 
+def centring_shift(x, lo, hi):
+    """The shift along each axis that moves the periodic centre of the points x (their
+    circular mean) to the centre of the box [lo, hi]."""
+    length = hi - lo
+    angle = 2 * np.pi * (x - lo) / length
+    centre = lo + length * np.mod(np.arctan2(np.sin(angle).mean(0), np.cos(angle).mean(0)), 2 * np.pi) / (2 * np.pi)
+    return (lo + hi) / 2 - centre
+
+
+def wrapped(x, shift, lo, hi):
+    return lo + np.mod(x + shift - lo, hi - lo)
+
+
 run, prefix, which, width, height = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]), int(sys.argv[5])
 lo, hi = box(run, "bodies")
 with h5py.File(f"{run}/trajectory.h5", "r") as f:
     x = f["particles/bodies/position/value"][-1]
-    clustered = x[f["particles/bodies/cluster_size/value"][-1] >= 2]
+    size = f["particles/bodies/cluster_size/value"][-1]
+    cluster = f["particles/bodies/cluster/value"][-1]
+shift = centring_shift(x[cluster == cluster[np.argmax(size)]], lo, hi)
+x = wrapped(x, shift, lo, hi)
+clustered = x[size >= 2]
 diameter = capsomer_diameter(clustered[:2000])
 reader = Xdmf3ReaderT(FileName=[f"{run}/trajectory.bodies.xmf"])
-clusters = Threshold(Input=reader)  # monomers (cluster_size 1) hidden
+moved = Calculator(Input=reader)  # the same shift, wrapped into the box, at every frame
+moved.CoordinateResults = 1
+moved.Function = " + ".join(
+    f"({lo[d]!r} + (coords{axis} + {shift[d] - lo[d]!r}) - {hi[d] - lo[d]!r} * floor((coords{axis} + "
+    f"{shift[d] - lo[d]!r}) / {hi[d] - lo[d]!r})) * {unit}"
+    for d, (axis, unit) in enumerate((("X", "iHat"), ("Y", "jHat"), ("Z", "kHat"))))
+clusters = Threshold(Input=moved)  # monomers (cluster_size 1) hidden
 clusters.Scalars = ["POINTS", "cluster_size"]
 try:
     clusters.LowerThreshold, clusters.UpperThreshold = 1.5, 1e9
