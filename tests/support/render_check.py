@@ -18,7 +18,9 @@ of the view script:
 usage: render_check.py RUN_DIR PNG VIEW
 views: particles capsid capsid_early quadrant cutaway section big_grains small_grains rolls
        convection_above convection_oblique convection_below"""
+import glob
 import json
+import re
 import sys
 
 import h5py
@@ -331,7 +333,10 @@ elif view.startswith("convection_"):
     # Stream lines: their points (saved by the view) lie in the box with temperatures inside
     # the cells' range; at every point no nearer line passes over, the pixel has the colour of
     # its temperature.
-    g = h5py.File(f"{run}/fields.h5", "r")["fields/box"]
+    # A continued run's last frame is in its last segment's file, which the view draws.
+    steps = [int(m.group(1)) for m in (re.search(r"fields\.from(\d+)\.h5$", n)
+                                       for n in glob.glob(f"{run}/fields.from*.h5")) if m]
+    g = h5py.File(f"{run}/fields.from{max(steps)}.h5" if steps else f"{run}/fields.h5", "r")["fields/box"]
     t_cells = g["temperature/value"][-1]
     t_lo, t_hi = t_cells.min(), t_cells.max()
     table = np.genfromtxt(png[:-4] + ".lines.csv", delimiter=",", names=True)
