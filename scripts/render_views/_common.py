@@ -28,6 +28,9 @@ WALL_GREY = 0.55
 STRIP = 0.2
 # The unit of length each scene is written in (the label of the scale bar).
 UNITS = {"rotating-drum": "d", "vibrated-sawtooth": "d", "granular-bed": "d"}
+# The colour maps whose legend annotate() placed: recolouring a frame keeps it shown (a movie
+# lost its legend after the first frame when every recolouring hid it).
+LEGENDS = set()
 
 
 def scene(run):
@@ -163,7 +166,7 @@ def colour_by_range(shown, association, array, stops, lo, hi):
     lut.AutomaticRescaleRangeMode = "Never"
     GetOpacityTransferFunction(array).RescaleTransferFunction(lo, hi)
     lut.RescaleTransferFunction(lo, hi)
-    shown.SetScalarBarVisibility(GetActiveViewOrCreate("RenderView"), False)
+    shown.SetScalarBarVisibility(GetActiveViewOrCreate("RenderView"), lut.GetGlobalIDAsString() in LEGENDS)
     return lut
 
 
@@ -215,6 +218,7 @@ def annotate(view, framing, unit, lut=None, title="", time=True):
     left = 1 - strip
     font = max(8, min(14, int(strip * width / 9)))  # "t = 1234.5 tau" fits the strip
     if lut is not None:
+        LEGENDS.add(lut.GetGlobalIDAsString())
         bar = GetScalarBar(lut, view)
         bar.Title, bar.ComponentTitle = title, ""
         bar.WindowLocation = "Any Location"

@@ -78,7 +78,7 @@ def draw(side):
             temperature = f["fields/box/temperature/value"][:]
         times = list(reader.TimestepValues) or [0.0]
         if os.environ.get("EMERGENT_SAVE_STATE"):
-            t_lo, t_hi = float(temperature[-1].min()), float(temperature[-1].max())
+            t_lo, t_hi = float(np.nanmin(temperature[-1])), float(np.nanmax(temperature[-1]))
             colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))
             save_state(view, times)
             return
@@ -87,7 +87,7 @@ def draw(side):
             if times[frame] <= done:
                 continue
             done = times[frame]
-            t_lo, t_hi = float(temperature[frame].min()), float(temperature[frame].max())
+            t_lo, t_hi = float(np.nanmin(temperature[frame])), float(np.nanmax(temperature[frame]))
             lut = colour_by_range(shown, "POINTS", "temperature", THERMAL, t_lo, max(t_hi, t_lo + 1e-12))
             if strip is None:
                 strip = annotate(view, framing, "sigma", lut, "temperature")

@@ -49,6 +49,29 @@ render_and_check shell capsid_early 500x500
 n=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$dir/drum/render/particles.mp4")
 [ "$n" = 11 ] || { echo "FAIL: the movie has $n frames, the run 11"; exit 1; }
 echo "ok: a movie of 11 frames"
+# A continued run: the convection movie runs through both segments (6 + 6 field frames), every
+# frame with its temperature legend in the strip (once lost after the first frame); its short
+# field intervals leave some cells empty (no temperature), as a dilute layer can.
+run rayleigh-benard --preset tiny --set fields.grid=6x6x5 --set fields.interval=50 --set steps=300 \
+  --checkpoint-every 300 -o "$dir/rb_cont"
+run --restart "$dir/rb_cont/checkpoint.h5" --set steps=600 --set checkpoint_every=0 -o "$dir/rb_cont"
+"$root/scripts/render" "$dir/rb_cont" --view convection_oblique --movie --size 400x300 >/dev/null
+n=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$dir/rb_cont/render/convection_oblique.mp4")
+[ "$n" = 12 ] || { echo "FAIL: the continued run's movie has $n frames, its segments 12"; exit 1; }
+/usr/bin/python3 - "$dir/rb_cont/render" <<'PY' || exit 1
+import glob, json, sys
+import matplotlib.image as mpimg
+import numpy as np
+frames = sorted(glob.glob(sys.argv[1] + "/convection_oblique_0*.png"))
+for name in frames:
+    img = mpimg.imread(name)[:, :, :3]
+    x0 = json.load(open(name[:-4] + ".camera.json"))["strip"][0]  # the strip's left pixel column
+    legend = img[:, x0:]
+    # The legend's colour bar: saturated pixels (text, the scale bar and the background are grey).
+    if np.sum(legend.max(axis=2) - legend.min(axis=2) > 0.4) < 50:
+        sys.exit(f"FAIL: no temperature legend in {name}")
+print(f"ok: {len(frames)} frames through both segments, each with its legend")
+PY
 # scripts/replay: the state file of each scene's default view opens the run in ParaView
 # (tests/support/state_check.py, under pvbatch: times, points, what is shown).
 . "$root/scripts/render_views/headless.sh"

@@ -338,7 +338,7 @@ elif view.startswith("convection_"):
                                        for n in glob.glob(f"{run}/fields.from*.h5")) if m]
     g = h5py.File(f"{run}/fields.from{max(steps)}.h5" if steps else f"{run}/fields.h5", "r")["fields/box"]
     t_cells = g["temperature/value"][-1]
-    t_lo, t_hi = t_cells.min(), t_cells.max()
+    t_lo, t_hi = np.nanmin(t_cells), np.nanmax(t_cells)  # a cell no atom visited has none
     table = np.genfromtxt(png[:-4] + ".lines.csv", delimiter=",", names=True)
     x = np.c_[table["Points0"], table["Points1"], table["Points2"]]
     t = table["temperature"]
