@@ -28,6 +28,8 @@ if not rows or not all(("| PASS: " in r) or ("| FAIL: " in r) for r in rows):
     failures.append(f"rows without a verdict:\n{text}")
 if "taylor-couette: 4 vortices in" not in text:
     failures.append("no taylor-couette fraction")
+if "capsid-assembly from monomers: a closed shell that held in" not in text:
+    failures.append("no capsid-assembly fraction of seeds that closed a shell")
 if "rayleigh-benard: " not in text or "seed 12345: Nu 1.048" not in text:
     failures.append("no rayleigh-benard Nusselt numbers (the logged 1000-tau run: 1.048)")
 for f in failures:

@@ -303,6 +303,14 @@ elif view == "capsid":
     g = f["particles/bodies"]
     x = g["position/value"][-1]
     csize = g["cluster_size/value"][-1]
+    # The view draws the periodic box shifted so that the largest cluster sits whole at its
+    # centre: the same images here, each axis's shift from that cluster's circular mean.
+    lo = np.asarray(g["box/offset"][:], float)
+    length = np.diag(np.asarray(g["box/edges/value"][-1], float))
+    members = x[g["cluster/value"][-1] == g["cluster/value"][-1][np.argmax(csize)]]
+    angle = 2 * np.pi * (members - lo) / length
+    centre = lo + length * (np.arctan2(np.sin(angle).mean(0), np.cos(angle).mean(0)) % (2 * np.pi)) / (2 * np.pi)
+    x = lo + np.mod(x + (lo + length / 2 - centre) - lo, length)
     colour = np.where((csize == 60)[:, None], [(0.10, 0.20, 0.60)], [(1.00, 0.75, 0.50)])
     radius = np.full(len(x), cam["diameter"] / 2 * pixels)
     sphere_verdict(*check_spheres(x, colour, csize >= 2, radius), "capsomers")
