@@ -44,6 +44,20 @@ for start in shell open_shell; do
   render_and_check $start capsid 500x500
 done
 render_and_check shell capsid_early 500x500
+# A shell that drifted across the box's faces (the run's positions moved by half the box) is
+# drawn whole: the view shifts the periodic box to put the largest cluster at its centre.
+run capsid-assembly --preset tiny --set start=shell --set attraction=0.09 --set steps=200 \
+  --set output.every=100 -o "$dir/wrapped"
+/usr/bin/python3 - "$dir/wrapped/trajectory.h5" <<'PY'
+import sys
+import h5py
+import numpy as np
+with h5py.File(sys.argv[1], "a") as f:
+    g = f["particles/bodies"]
+    lo, length = g["box/offset"][:], np.diag(g["box/edges/value"][-1])
+    g["position/value"][...] = lo + np.mod(g["position/value"][...] + length / 2 - lo, length)
+PY
+render_and_check wrapped capsid 500x500
 # A movie over every recorded frame (0, 100, ..., 1000: 11).
 "$root/scripts/render" "$dir/drum" --movie --size 300x300 >/dev/null
 n=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$dir/drum/render/particles.mp4")
