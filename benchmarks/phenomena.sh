@@ -6,7 +6,7 @@
 #                                [--set KEY=VALUE ...] [--checkpoint-every N] [--continue]
 #   SCENE: taylor-couette, rayleigh-benard, rotating-drum, vibrated-sawtooth, capsid-assembly
 #   (default: all five; capsid-assembly's small preset runs start=shell: the closed side of its
-#   hysteresis; its assembly preset grows shells from monomers, about an hour on 2 cores)
+#   hysteresis; its assembly preset grows shells from monomers, ~80 min on one core)
 #   --preset: default small (the preset that shows the phenomenon on a 2-core machine)
 #   --ranks: MPI ranks per run (default 2); --out: default /tmp/emergent_phenomena
 #   --checkpoint-every N: a long run keeps its latest checkpoint (the engine deletes it at the end);
