@@ -6,9 +6,7 @@ on the layer beside the strip with the temperature scale, a scale bar and the ti
 lines' points and temperatures are saved beside each image (PREFIX.lines.csv). A continued run
 is read across its segments (fields, then fields.from<STEP> in order): a still shows the last
 segment's last frame, a movie every frame once."""
-import glob
 import os
-import re
 import sys
 
 import h5py
@@ -17,6 +15,8 @@ from paraview.simple import (CellDatatoPointData, ExtractBlock, Hide, MergeBlock
                              SaveScreenshot, Show, StreamTracer, Xdmf3ReaderT)
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # scripts/: emergentpy
+from emergentpy import Run  # noqa: E402
 from _common import (THERMAL, annotate, colour_by_range, corners, flat, flat_view, frame_content,  # noqa: E402
                      save_state, write_camera)
 
@@ -26,11 +26,9 @@ LINE_WIDTH = 3
 
 
 def segments(run):
-    """The run's fields files without their extension, in order: the first run's, then each
-    continuation's (fields.from<STEP>, by STEP)."""
-    steps = sorted(int(m.group(1)) for m in (re.search(r"fields\.from(\d+)\.xmf$", n)
-                                             for n in glob.glob(f"{run}/fields.from*.xmf")) if m)
-    return [f"{run}/fields"] + [f"{run}/fields.from{s}" for s in steps]
+    """The run's fields files without their extension, in order (the first run's, then each
+    continuation's), as emergentpy reads a continued run."""
+    return [path[:-len(".h5")] for path in Run(run).fields_paths]
 
 
 def draw(side):

@@ -18,9 +18,8 @@ of the view script:
 usage: render_check.py RUN_DIR PNG VIEW
 views: particles capsid capsid_early quadrant cutaway section big_grains small_grains rolls
        convection_above convection_oblique convection_below"""
-import glob
 import json
-import re
+import os
 import sys
 
 import h5py
@@ -342,9 +341,9 @@ elif view.startswith("convection_"):
     # the cells' range; at every point no nearer line passes over, the pixel has the colour of
     # its temperature.
     # A continued run's last frame is in its last segment's file, which the view draws.
-    steps = [int(m.group(1)) for m in (re.search(r"fields\.from(\d+)\.h5$", n)
-                                       for n in glob.glob(f"{run}/fields.from*.h5")) if m]
-    g = h5py.File(f"{run}/fields.from{max(steps)}.h5" if steps else f"{run}/fields.h5", "r")["fields/box"]
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../scripts"))
+    from emergentpy import Run
+    g = h5py.File(Run(run).fields_paths[-1], "r")["fields/box"]
     t_cells = g["temperature/value"][-1]
     t_lo, t_hi = np.nanmin(t_cells), np.nanmax(t_cells)  # a cell no atom visited has none
     table = np.genfromtxt(png[:-4] + ".lines.csv", delimiter=",", names=True)
