@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # scripts/render draws what the run holds: every view of every scene, each image checked by
 # tests/support/render_check.py against trajectory.h5 / fields.h5 through the camera matrix the
-# view saves: at the projection of every shown point (particle, cell centre, stream-line point)
-# that nothing nearer covers, the pixel has the colour computed here for it (species, radial
-# velocity, vorticity, temperature, cluster size; translucent solvent layer by layer); hidden
-# points are not drawn; far from everything the background is white. --movie makes an MP4 of
+# view saves: at the projection of every shown point (particle, cell centre) that nothing nearer
+# covers, the pixel has the colour computed here for it (species, radial velocity, vorticity,
+# cluster size; translucent solvent layer by layer), and at a stream line's points the colour
+# of a line that may be in front there (temperature); hidden points are not drawn; far from everything the background is white. --movie makes an MP4 of
 # every recorded frame. Bad input (not a run, a view of another scene, a movie of fewer than 10
 # frames, a bad size, fields missing) is one line with status 2. Needs ParaView and xvfb
 # (scripts/setup --tests): missing, the test fails; EMERGENT_TEST_PARAVIEW=0 skips it (exit 77).
@@ -35,6 +35,19 @@ render_and_check tc quadrant 500x500
 render_and_check tc rolls 300x500
 run rayleigh-benard --preset tiny --set fields.grid=6x6x5 -o "$dir/rb"
 for v in convection_above convection_oblique convection_below; do render_and_check rb $v 400x400; done
+# The check can fail: the same pictures with red and blue swapped are refused.
+while read -r r v; do
+  pic=$dir/$r/render/$v
+  /usr/bin/python3 -c "import sys, matplotlib.image as m; m.imsave(sys.argv[2], m.imread(sys.argv[1])[:, :, 2::-1].copy())" \
+    "$pic.png" "$pic.swapped.png"
+  cp "$pic.camera.json" "$pic.swapped.camera.json"
+  [ ! -f "$pic.lines.csv" ] || cp "$pic.lines.csv" "$pic.swapped.lines.csv"
+  if /usr/bin/python3 "$check" "$dir/$r" "$pic.swapped.png" "$v" >/dev/null 2>&1; then
+    echo "FAIL: render_check passed $r's $v picture with red and blue swapped"; exit 1
+  fi
+done <<<"drum particles
+rb convection_oblique"
+echo "ok: pictures with red and blue swapped fail the check"
 # The capsid views: a closed shell (dark blue throughout) and an open 59-cluster with a monomer
 # (light orange; the monomer hidden), at e = 0.09 after 200 steps; the early state with its
 # translucent solvent.

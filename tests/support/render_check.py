@@ -14,7 +14,8 @@ of the view script:
     the view draws walls), the strip aside;
   - framing: what is drawn spans at least 90 % of the picture left of the strip along one axis
     and leaves its border free;
-  - field views (rolls, convection): as before, flat colours at cell centres and line points.
+  - field views: the roll map's flat colours at cell centres; stream lines in the colour of a
+    line that may be in front at each of their points.
 usage: render_check.py RUN_DIR PNG VIEW
 views: particles capsid capsid_early quadrant cutaway section big_grains small_grains rolls
        convection_above convection_oblique convection_below"""
@@ -55,38 +56,32 @@ def project(x):
     return col - 0.5, row - 0.5, depth
 
 
-def check_points(x, colour, shown, size, hidden=None, tolerance=0.02, only=None, may_be_blank=None):
-    """Colour at uncovered shown points, background at uncovered hidden points; returns
-    (checked, good, hidden_checked, hidden_good, far-from-points mask); `only`: the points to
-    check (default all), every shown point may cover them; `may_be_blank`: points whose pixel
-    may be background instead."""
+def check_points(x, colours, size, only, ends, tolerance=0.02):
+    """Lines of `size` pixels drawn through points x: at each point of `only` (not at the image's
+    edge) the pixel there, or one beside it, has the colour of a line that may be in front there:
+    of the points within a pixel that are not a line's end (their lines surely cover it; a line
+    ends at its end point, and the pixels around it blend it with what lies behind) the nearest
+    to the camera, or any point nearer still within half the width and 2 pixels (its line may
+    reach over it). `ends`: the lines' first and last points.
+    `colours(indices)` [m, k, 3]: the colours each of those points may show. Returns (checked, good, sole: checked where one line alone could be
+    in front)."""
     col, row, depth = project(x)
-    hidden = ~shown if hidden is None else hidden
-    checked = good = hidden_checked = hidden_good = 0
-    reach = size / 2 + 2  # a square point of `size` pixels covers the centre of another this near
-    for i in range(len(x)) if only is None else only:
+    checked = good = sole = 0
+    reach = size / 2 + 2
+    for i in only:
         r, k = int(round(row[i])), int(round(col[i]))
         if not (2 <= r < H - 2 and 2 <= k < W - 2):
             continue
-        near = np.maximum(np.abs(col - col[i]), np.abs(row - row[i])) < reach
-        near[i] = False
+        apart = np.maximum(np.abs(col - col[i]), np.abs(row - row[i]))
+        sure = np.r_[i, np.nonzero((apart < 1) & ~ends)[0]]
+        front = sure[np.argmin(depth[sure])]
+        candidates = np.r_[front, np.nonzero((apart < reach) & (depth < depth[front]))[0]]
+        checked += 1
+        sole += len(candidates) == 1
+        wanted = np.reshape(colours(candidates), (-1, 1, 3))
         patch = img[r - 1:r + 2, k - 1:k + 2].reshape(-1, 3)
-        if shown[i]:
-            if np.any(near & shown & (depth < depth[i])):
-                continue  # a nearer shown point may cover it
-            checked += 1
-            wanted = np.reshape(colour[i], (-1, 1, 3))  # one colour, or any of several
-            good += (np.any(np.all(np.abs(patch[None] - wanted) < tolerance, axis=2))
-                     or (may_be_blank is not None and may_be_blank[i] and np.all(img[r, k] > 0.98)))
-        elif hidden[i] and not np.any(shown & (np.maximum(np.abs(col - col[i]), np.abs(row - row[i])) < reach + 1.5)):
-            hidden_checked += 1
-            hidden_good += np.all(patch > 0.98)
-    far = np.ones((H, W), bool)
-    reach = int(size + 2)
-    for i in np.nonzero(shown)[0]:
-        r, k = int(round(row[i])), int(round(col[i]))
-        far[max(0, r - 2 * reach):max(0, r + 2 * reach + 1), max(0, k - 2 * reach):max(0, k + 2 * reach + 1)] = False
-    return checked, good, hidden_checked, hidden_good, far
+        good += np.any(np.all(np.abs(patch[None] - wanted) < tolerance, axis=2))
+    return checked, good, sole
 
 
 def shared_problems(checked, good, hidden_checked, hidden_good, clean, what, minimum):
@@ -104,14 +99,18 @@ def shared_problems(checked, good, hidden_checked, hidden_good, clean, what, min
     return problems
 
 
-def verdict(checked, good, hidden_checked, hidden_good, far, what, minimum=20):
-    white = np.all(img[far] > 0.98, axis=1).mean() if far.any() else 1.0
-    problems = shared_problems(checked, good, hidden_checked, hidden_good, white, what, minimum)
+def line_verdict(checked, good, sole, what, minimum=200):
+    """Stream lines: enough points checked, each showing a line that may be in front there
+    (`sole`: how many of them could show only their own line, reported)."""
+    problems = []
+    if checked < minimum:
+        problems.append(f"only {checked} {what} to check")
+    if good != checked:
+        problems.append(f"{checked - good} of {checked} {what} lack the colour of a line in front there")
     if problems:
         sys.exit(f"FAIL ({view}): " + "; ".join(problems))
-    print(f"ok ({view}): {good} of {checked} uncovered {what} in their colour, {hidden_checked} "
-          "hidden points not drawn, background clean")
-
+    print(f"ok ({view}): {good} of {checked} {what} show a line in front there in its colour "
+          f"({sole} where one line alone is in front)")
 
 
 def shade_match(patch, colour, veil=None):
@@ -338,8 +337,8 @@ elif view == "rolls":
     print(f"ok ({view}): {np.sum(~line)} cells in their vorticity colour, {line.sum()} under contours")
 elif view.startswith("convection_"):
     # Stream lines: their points (saved by the view) lie in the box with temperatures inside
-    # the cells' range; at every point no nearer line passes over, the pixel has the colour of
-    # its temperature.
+    # the cells' range; at each point the pixel has the temperature colour of a line that may be
+    # in front there.
     # A continued run's last frame is in its last segment's file, which the view draws.
     sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "../../scripts"))
     from emergentpy import Run
@@ -354,28 +353,40 @@ elif view.startswith("convection_"):
         sys.exit(f"FAIL ({view}): {len(x)} stream line points, or some outside the box")
     if np.any(t < t_lo - 1e-6) or np.any(t > t_hi + 1e-6):
         sys.exit(f"FAIL ({view}): stream line temperatures outside the cells' range")
-    keep = np.random.default_rng(1).permutation(len(x))[:8000]  # a sample keeps the check quick
-    # Colour changes along a line: a pixel beside a point may show a temperature up to half a
-    # step away, so any temperature between the neighbouring points' midpoints is accepted.
-    t_prev, t_next = np.r_[t[:1], t[:-1]], np.r_[t[1:], t[-1:]]
-    span = np.linspace(0, 1, 7)
-    t_near = (t[:, None] + np.where(span < 0.5, (t_prev - t)[:, None] * (1 - 2 * span) / 2,
-                                    (t_next - t)[:, None] * (2 * span - 1) / 2))
-    colour = ramp(THERMAL, t_lo, t_hi, t_near)
     # Lines cover pixels between their points too: consecutive rows of one line (a step of at
-    # most 0.1 cell apart) get 4 points in between, which may cover but are not checked.
+    # most 0.1 cell apart) get 4 points in between, which are candidates for what is in front
+    # but not checked themselves.
     step = np.linalg.norm(np.diff(x, axis=0), axis=1)
     linked = step < 0.2 * np.max((hi - lo) / g.attrs["shape"]) + 1e-9
     joined = np.nonzero(linked)[0]
-    # A line's last point may show the background instead: the drawn line may stop short of it
-    # (seen: the 3x3 pixels around a line's last point all background, the line ending before).
-    last = ~np.r_[linked, False]
-    between = np.concatenate([x[joined] + f * (x[joined + 1] - x[joined]) for f in (0.2, 0.4, 0.6, 0.8)])
-    x = np.r_[x, between]
-    colour = np.r_[colour, np.zeros((len(between), len(span), 3))]
-    c, gd, hc, hg, far = check_points(x, colour, np.ones(len(x), bool), cam["line_width"],
-                                      np.zeros(len(x), bool), 0.03, only=keep,
-                                      may_be_blank=np.r_[last, np.zeros(len(between), bool)])
-    verdict(c, gd, hc, hg, np.zeros_like(far), "stream line points")
+    # A line's ends are not checked: the drawn line may stop short of its last point (seen: the
+    # 3x3 pixels around it all background), and the pixels at an end blend the line with what
+    # lies behind it.
+    ends = ~np.r_[linked, False] | ~np.r_[False, linked]
+    keep = np.random.default_rng(1).permutation(np.nonzero(~ends)[0])[:8000]  # a sample keeps the check quick
+    # Colour changes along a line: a pixel beside a point may show any temperature up to half a
+    # step to the neighbouring points of its line (a fifth of a step for the points between).
+    t_prev = np.where(np.r_[False, linked], np.r_[t[:1], t[:-1]], t)
+    t_next = np.where(np.r_[linked, False], np.r_[t[1:], t[-1:]], t)
+    t_a, t_b = np.minimum(t_prev, t_next), np.maximum(t_prev, t_next)
+    t_a, t_b = np.minimum(t, (t + t_a) / 2), np.maximum(t, (t + t_b) / 2)
+    fractions = (0.2, 0.4, 0.6, 0.8)
+    x = np.r_[x, np.concatenate([x[joined] + f * (x[joined + 1] - x[joined]) for f in fractions])]
+    t_0, t_1 = np.tile(t[joined], len(fractions)), np.tile(t[joined + 1], len(fractions))
+    f = np.repeat(fractions, len(joined))
+    t_a = np.r_[t_a, t_0 + (f - 0.1) * (t_1 - t_0)]
+    t_b = np.r_[t_b, t_0 + (f + 0.1) * (t_1 - t_0)]
+
+    def colours(indices):
+        """Each point's temperature range, sampled finely enough (25 values) that neighbouring
+        samples differ by well under the tolerance."""
+        s = np.linspace(0, 1, 25)
+        return ramp(THERMAL, t_lo, t_hi, t_a[indices, None] + s * (t_b - t_a)[indices, None])
+
+    # The still shows hundreds of thousands of line points, most behind another line within a
+    # few pixels: each checked pixel shows the front-most line there, so all are checked.
+    ends = np.r_[ends, np.zeros(len(x) - len(ends), bool)]
+    checked, good, sole = check_points(x, colours, cam["line_width"], keep, ends, 0.03)
+    line_verdict(checked, good, sole, "stream line points")
 else:
     sys.exit(f"render_check.py: no check for view '{view}'")
