@@ -39,10 +39,16 @@ public:
     /// Moves the planes between domains to equal shares of the work (LoadBalance::Cost); where
     /// they moved (returns true) a build must follow. Collective.
     bool rebalance();
-    /// After a drift: the list is rebuilt if some particle moved beyond half the skin since the
-    /// last build (or the planes moved), otherwise the ghosts follow their owners. `defer`: the
-    /// forces that follow are not sampled, so the ghosts' refresh may overlap them.
-    void follow_drift(bool defer);
+    /// After a drift, the step's one collective: whether the list must be rebuilt (some
+    /// particle on some rank moved beyond half the skin since the last build, or the planes
+    /// move), voted in the same global sum as the caller's `n` sums (at most kMaxVoteSums,
+    /// e.g. the thermostat's), which then hold the totals. Throws InstabilityError where a
+    /// particle ran away (not finite, or beyond cutoff + skin).
+    static constexpr int kMaxVoteSums = 32;
+    bool vote(double* sums, int n);
+    /// Then the list is rebuilt (`build`: what vote() said), or the ghosts follow their owners.
+    /// `defer`: the forces that follow are not sampled, so the ghosts' refresh may overlap them.
+    void follow(bool build, bool defer);
 
     /// Where the rebuild test's origin (the owned positions at the last build) lies in the
     /// memory the loops run on; null where it does not match the owned particles.
@@ -81,9 +87,12 @@ public:
     /// Counts every build of this object (never set back, unlike rebuilds()).
     unsigned long long build_serial() const { return build_serial_; }
     void set_rebuilds(long long n) { rebuilds_ = n; }
-    /// The step rebuilt the list: its first global sum's wait is counted apart.
+    /// The step rebuilt the list.
     bool built_this_step() const { return built_this_step_; }
     void begin_step(bool balance_due) {
+        // The first global sum after a build (the next step's vote) waits for the ranks that
+        // built slower: its wait is counted apart.
+        built_last_step_ = built_this_step_;
         built_this_step_ = false;
         balance_due_ = balance_due;
     }
@@ -126,6 +135,7 @@ private:
     std::vector<std::pair<std::int64_t, Vec3>> restored_reference_;
     bool bodies_dealt_ = false;
     bool built_this_step_ = false;
+    bool built_last_step_ = false;
     bool balance_due_ = false;  ///< the planes move at this step's next drift
     double drift_moved_sq_ = 0;
     bool drift_moved_known_ = false;

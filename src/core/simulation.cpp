@@ -272,6 +272,20 @@ double Simulation::cost_imbalance() const {
     return decomp::cost_imbalance(e.comm, cost.data(), cost.size());
 }
 
+namespace {
+
+/// After a drift: the step's one collective (the rebuild vote, after the step's last drift with
+/// the thermostat's or the wall layers' sums), their rescaling, then the list rebuilt or the
+/// ghosts refreshed.
+void settle_drift(Integration& motion, Neighbourhood& near, bool defer, bool last_drift) {
+    Integration::HalfStepSums sums = last_drift ? motion.half_step_sums() : Integration::HalfStepSums{};
+    const bool build = near.vote(sums.values, sums.n);
+    if (last_drift) motion.apply_half_step(sums);
+    near.follow(build, defer);
+}
+
+}  // namespace
+
 void Simulation::step(bool sample) {
     Engine& e = *engine_;
     const exec::Transfers before = exec::transfers();
@@ -282,8 +296,8 @@ void Simulation::step(bool sample) {
     e.neighbourhood.begin_step(e.settings.balance == LoadBalance::Cost && every > 0 && (e.step + 1) % every == 0);
     switch (e.settings.integrator) {
     case Integrator::VelocityVerlet:
-        e.motion.kick_drift(0.5 * dt, dt, e.time);
-        e.neighbourhood.follow_drift(!sample);
+        e.motion.kick_drift(0.5 * dt, dt, e.time, true);
+        settle_drift(e.motion, e.neighbourhood, !sample, true);
         e.forces.compute(sample, e.time + dt);
         e.motion.kick(0.5 * dt);
         break;
@@ -292,16 +306,15 @@ void Simulation::step(bool sample) {
         // Comput. Phys. Commun. 146 (2002) 188, eq. 31).
         constexpr double lambda = 0.1931833275037836;
         e.motion.kick_drift(lambda * dt, 0.5 * dt, e.time);
-        e.neighbourhood.follow_drift(true);
+        settle_drift(e.motion, e.neighbourhood, true, false);
         e.forces.compute(false, e.time + 0.5 * dt);
-        e.motion.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt, e.time + 0.5 * dt);
-        e.neighbourhood.follow_drift(!sample);
+        e.motion.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt, e.time + 0.5 * dt, true);
+        settle_drift(e.motion, e.neighbourhood, !sample, true);
         e.forces.compute(sample, e.time + dt);
         e.motion.kick(lambda * dt);
         break;
     }
     }
-    e.motion.apply_thermostat();
     e.motion.apply_body_langevin();
     ++e.step;
     e.time += dt;

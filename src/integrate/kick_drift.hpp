@@ -28,19 +28,21 @@ struct KickDrift {
     }
 };
 
-/// v += kick f/m with the new forces (velocity Verlet: the second half kick, dt/2).
+/// v = scale v + kick f/m with the new forces (velocity Verlet: the second half kick, dt/2;
+/// scale: a thermostat's factor left to this pass, else 1).
 struct Kick {
     Vec3* v;
     const Vec3* f;
     const int* species;
     const Real* inverse_mass;
     Real kick;
+    Real scale = 1;
 
     EMERGENT_HD void operator()(std::size_t i) const {
         const Real h = kick * inverse_mass[species[i]];
-        v[i].x += h * f[i].x;
-        v[i].y += h * f[i].y;
-        v[i].z += h * f[i].z;
+        v[i].x = scale * v[i].x + h * f[i].x;
+        v[i].y = scale * v[i].y + h * f[i].y;
+        v[i].z = scale * v[i].z + h * f[i].z;
     }
 };
 

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 
+#include "emergent/execution.hpp"
 #include "emergent/vec3.hpp"
 
 namespace emergent::integrate {
@@ -20,6 +21,17 @@ struct FreeKineticEnergy {
     EMERGENT_HD double operator()(std::size_t i) const {
         if (body && body[i] >= 0) return 0;
         return 0.5 * mass[species[i]] * dot(v[i], v[i]);
+    }
+};
+
+/// A drift's two measures, reduced in its pass: the free kinetic energy (summed) and the largest
+/// squared displacement since the list was built (a NaN kept, as exec::transform_max does).
+struct KineticAndMoved {
+    double kinetic = 0, moved_sq = 0;
+    EMERGENT_HD KineticAndMoved& operator+=(const KineticAndMoved& o) {
+        kinetic += o.kinetic;
+        moved_sq = exec::max_keeping_nan(moved_sq, o.moved_sq);
+        return *this;
     }
 };
 

@@ -486,6 +486,11 @@ bool NeighbourList::needs_rebuild(const ParticleStore& store, MPI_Comm comm) con
     return rebuild_due(max_displacement_sq(store), comm);
 }
 
+NeighbourList::Verdict NeighbourList::displacement_verdict(double local) const {
+    if (!(local <= list_cutoff() * list_cutoff())) return kRunaway;  // NaN included
+    return local > 0.25 * skin_ * skin_ ? kRebuild : kKeep;
+}
+
 bool NeighbourList::rebuild_due(double local, MPI_Comm comm) const {
     // NaN is mapped to +inf so the MPI max carries it to every rank.
     if (std::isnan(local)) local = std::numeric_limits<double>::infinity();
