@@ -72,6 +72,14 @@ struct EngineState {
     /// Where the loops run (exec::Target): the host's loops, or CUDA kernels.
     exec::Target target;
     PhaseTimes times;
+    /// A list build happened and no global sum has waited since: the next one's wait also goes
+    /// to times.collective_wait_after_build (the ranks that built slower hold it up).
+    bool sum_after_build_pending = false;
+    double* after_build_slot() {
+        if (!sum_after_build_pending) return nullptr;
+        sum_after_build_pending = false;
+        return &times.collective_wait_after_build;
+    }
     StepLedger ledger;
     long long n_global = 0, n_free = 0, n_bodies = 0, step = 0;
     double time = 0;

@@ -12,21 +12,24 @@
 namespace emergent {
 namespace {
 
-/// A stage, then its particle's kinetic energy and displacement, in one pass.
-template <class Stage, class Kinetic, class Moved>
-struct MeasuredStage {
-    Stage stage;
-    Kinetic kinetic;
-    Moved moved;
-    EMERGENT_HD integrate::KineticAndMoved operator()(std::size_t i) const {
+/// What the thermostat acting before a kick-drift needs, measured in its pass: the kinetic
+/// energy and squared drift of the velocities it starts from, then the kick-drift, then the
+/// displacement since the list was built.
+struct MeasuredKickDrift {
+    integrate::KickDrift stage;
+    integrate::FreeKineticEnergy kinetic;
+    SquaredDisplacement moved;
+    EMERGENT_HD integrate::DriftMeasures operator()(std::size_t i) const {
+        const double before = kinetic(i);
+        const Vec3 v = stage.v[i];
         stage(i);
-        return {kinetic(i), moved(i)};
+        return {before, moved(i), double(stage.drift) * double(stage.drift) * dot(v, v)};
     }
 };
 
 }  // namespace
 
-void Integration::kick_drift(double kick, double drift, double at, bool thermostat_next) {
+void Integration::kick_drift(double kick, double drift, double at, bool step_start) {
     PhaseTimer timer(s_.times.integrate);
     ParticleStore& store = s_.store;
     near_.note_moved();
@@ -37,21 +40,21 @@ void Integration::kick_drift(double kick, double drift, double at, bool thermost
                                      drift};
     // Where the drift is the last move before the rebuild test, the test is taken in the same
     // pass: one read of the positions fewer, and on a device one launch fewer.
-    // The thermostat that may follow needs the kinetic energy: summed in the same pass too.
-    if (const Vec3* x0 = s_.boundaries.empty() && !s_.bodies() ? near_.check_origin() : nullptr) {
-        if (thermostat && thermostat_next) {
-            const integrate::KineticAndMoved measured = exec::transform_sum<integrate::KineticAndMoved>(
-                s_.target, store.n_owned(),
-                MeasuredStage<integrate::KickDrift, integrate::FreeKineticEnergy, SquaredDisplacement>{
-                    stage, s_.kinetic_energy(), {stage.x, x0}});
-            near_.drift_moved(measured.moved_sq);
-            drift_kinetic_ = measured.kinetic;
-            drift_kinetic_known_ = true;
-        } else {
-            near_.drift_moved(exec::transform_max(
-                s_.target, store.n_owned(), 0.0,
-                exec::Then<integrate::KickDrift, SquaredDisplacement>{stage, {stage.x, x0}}));
-        }
+    // With the thermostat acting before it (see integration.hpp), its measures too.
+    const Vec3* x0 = s_.boundaries.empty() && !s_.bodies() ? near_.check_origin() : nullptr;
+    if (x0 && thermostat && step_start && !(s_.ghost_fields & kVelocity)) {
+        const integrate::DriftMeasures m = exec::transform_sum<integrate::DriftMeasures>(
+            s_.target, store.n_owned(), MeasuredKickDrift{stage, s_.kinetic_energy(), {stage.x, x0}});
+        near_.drift_moved(m.moved_sq);
+        voted_ = true;
+        drift_kinetic_ = m.kinetic;
+        drift_step_sq_ = m.step_sq;
+        voted_kick_ = kick;
+        voted_drift_ = drift;
+    } else if (x0) {
+        near_.drift_moved(exec::transform_max(
+            s_.target, store.n_owned(), 0.0,
+            exec::Then<integrate::KickDrift, SquaredDisplacement>{stage, {stage.x, x0}}));
     } else {
         exec::for_each(s_.target, store.n_owned(), stage);
     }
@@ -78,9 +81,16 @@ void Integration::kick(double kick) {
     ParticleStore& store = s_.store;
     s_.particles.backend_reads(kVelocity | kForce | kSpecies);
     const integrate::Kick stage{s_.data(kVelocity, store.velocity), s_.data(kForce, store.force),
-                                s_.data(kSpecies, store.species), s_.inverse_masses(), kick, kick_scale_};
-    kick_scale_ = 1;
-    exec::for_each(s_.target, store.n_owned(), stage);
+                                s_.data(kSpecies, store.species), s_.inverse_masses(), kick};
+    // The thermostat that follows at the step's end needs the kinetic energy: summed in the
+    // same pass.
+    if (thermostat && !s_.bodies() && !thermostat_done_) {
+        kick_kinetic_ = exec::transform_sum<double>(
+            s_.target, store.n_owned(), exec::Then<integrate::Kick, integrate::FreeKineticEnergy>{stage, s_.kinetic_energy()});
+        kick_kinetic_known_ = true;
+    } else {
+        exec::for_each(s_.target, store.n_owned(), stage);
+    }
     s_.particles.backend_wrote(kVelocity);
     if (s_.bodies()) {
         // The step's Langevin pass sets the constituents' velocities again before anything
@@ -94,81 +104,73 @@ void Integration::kick(double kick) {
     }
 }
 
-Integration::HalfStepSums Integration::half_step_sums() {
-    HalfStepSums local;
-    PhaseTimer timer(s_.times.integrate);
-    if (thermostat && s_.bodies()) {
-        const ParticleStore& store = s_.store;
-        s_.particles.backend_reads(kVelocity | kSpecies | kBody);
-        const integrate::MassMotion m = exec::transform_sum<integrate::MassMotion>(
-            s_.target, store.n_owned(),
-            integrate::FreeMassMotion{s_.data(kVelocity, store.velocity), s_.data(kSpecies, store.species),
-                                      s_.masses(), s_.data(kBody, store.body)});
-        local = {{m.mass, m.kinetic, m.momentum.x, m.momentum.y, m.momentum.z}, 5};
-    } else if (thermostat) {
-        local.values[0] = drift_kinetic_known_ ? drift_kinetic_ : s_.local_kinetic();
-        local.n = 1;
-    }
-    drift_kinetic_known_ = false;
-    // The wall layers due at the step being completed (keyed by its index, as at its end).
-    voted_layers_.clear();
-    layers_voted_ = false;
-    if (thermostat || wall_layers.empty()) return local;
-    for (auto& layer : wall_layers)
-        if (layer->due(s_.step + 1)) voted_layers_.push_back(layer.get());
-    bool fit = local.n + int(voted_layers_.size()) * WallLayerThermostat::kSums <= Neighbourhood::kMaxVoteSums;
-    for (std::size_t a = 0; a < voted_layers_.size(); ++a)
-        for (std::size_t b = a + 1; b < voted_layers_.size(); ++b) fit = fit && !voted_layers_[a]->overlaps(*voted_layers_[b]);
-    if (!fit) {
-        voted_layers_.clear();
-        return local;
-    }
-    layers_voted_ = true;
-    s_.particles.backend_reads(kPosition | kVelocity | kSpecies);
-    const BackendParticles particles = forces_.backend_particles();
-    for (WallLayerThermostat* layer : voted_layers_) {
-        layer->measure(particles, local.values + local.n);
-        local.n += WallLayerThermostat::kSums;
-    }
+Integration::VoteSums Integration::vote_sums() const {
+    VoteSums local;
+    if (!voted_) return local;
+    local.values[0] = drift_kinetic_;
+    local.n = 1;
+    local.step_sq = drift_step_sq_;
     return local;
 }
 
-void Integration::apply_half_step(const HalfStepSums& total) {
+double Integration::apply_voted_thermostat(const VoteSums& total) {
+    if (!voted_) return 0;
+    voted_ = false;
     PhaseTimer timer(s_.times.integrate);
-    if (layers_voted_ && !voted_layers_.empty()) {
-        const BackendParticles particles = forces_.backend_particles();
-        const double* sums = total.values;
-        for (WallLayerThermostat* layer : voted_layers_) {
-            layer->rescale(particles, sums);
-            sums += WallLayerThermostat::kSums;
-        }
-        s_.particles.backend_wrote(kVelocity);
-    }
-    if (!thermostat) return;
-    if (s_.bodies()) {
-        thermostat_free_particles(total.values);
-        return;
-    }
+    ParticleStore& store = s_.store;
     const double factor = thermostat->scale_factor(total.values[0], s_.dof(), s_.step, s_.settings.dt);
-    // Where nothing reads velocities before the kick (no velocity-dependent force, no ghost
-    // velocities), the kick applies the factor in its pass.
-    if (!(s_.ghost_fields & kVelocity)) {
-        kick_scale_ = factor;
+    s_.particles.backend_reads(kPosition | kVelocity | kForce | kSpecies);
+    exec::for_each(s_.target, store.n_owned(),
+                   integrate::RescaleBeforeKickDrift{s_.data(kPosition, store.position), s_.data(kVelocity, store.velocity),
+                                                     s_.data(kForce, store.force), s_.data(kSpecies, store.species),
+                                                     s_.inverse_masses(), voted_kick_, voted_drift_, factor - 1});
+    s_.particles.backend_wrote(kPosition | kVelocity);
+    thermostat_done_ = true;
+    return std::fabs(factor - 1);
+}
+
+void Integration::apply_thermostat() {
+    if (!thermostat) return;
+    if (thermostat_done_) {
+        thermostat_done_ = false;
         return;
     }
+    PhaseTimer timer(s_.times.integrate);
+    if (s_.bodies()) {
+        thermostat_free_particles();
+        return;
+    }
+    const double local = kick_kinetic_known_ ? kick_kinetic_ : s_.local_kinetic();
+    kick_kinetic_known_ = false;
+    double kinetic;
+    {
+        PhaseTimer summing(s_.times.collective_wait, s_.after_build_slot());
+        kinetic = decomp::sum(s_.comm, local);
+    }
+    const double factor = thermostat->scale_factor(kinetic, s_.dof(), s_.step, s_.settings.dt);
     exec::for_each(s_.target, s_.store.n_owned(), integrate::ScaleVelocity{s_.data(kVelocity, s_.store.velocity), factor});
     s_.particles.backend_wrote(kVelocity);
 }
 
 /// With rigid bodies the thermostat acts on the free particles alone (an explicit solvent bath),
 /// about their mean velocity; the bodies take the bath's temperature through collisions only.
-void Integration::thermostat_free_particles(const double* sums) {
+void Integration::thermostat_free_particles() {
     const ParticleStore& store = s_.store;
+    s_.particles.backend_reads(kVelocity | kSpecies | kBody);
+    const integrate::MassMotion local = exec::transform_sum<integrate::MassMotion>(
+        s_.target, store.n_owned(),
+        integrate::FreeMassMotion{s_.data(kVelocity, store.velocity), s_.data(kSpecies, store.species), s_.masses(),
+                                  s_.data(kBody, store.body)});
+    double sums[5] = {local.mass, local.kinetic, local.momentum.x, local.momentum.y, local.momentum.z};
+    {
+        PhaseTimer summing(s_.times.collective_wait, s_.after_build_slot());
+        exec::count_collective();
+        MPI_Allreduce(MPI_IN_PLACE, sums, 5, MPI_DOUBLE, MPI_SUM, s_.comm);
+    }
     if (s_.n_free < 2 || !(sums[0] > 0)) return;
     const Vec3 momentum{sums[2], sums[3], sums[4]};
     const double relative = sums[1] - 0.5 * dot(momentum, momentum) / sums[0];
     const double factor = thermostat->scale_factor(relative, 3.0 * double(s_.n_free) - 3.0, s_.step, s_.settings.dt);
-    s_.particles.backend_reads(kVelocity | kBody);
     exec::for_each(s_.target, store.n_owned(),
                    integrate::ScaleFreeAboutMean{s_.data(kVelocity, store.velocity), s_.data(kBody, store.body),
                                                  (1 / sums[0]) * momentum, factor});
@@ -190,10 +192,7 @@ void Integration::apply_body_langevin() {
 }
 
 void Integration::apply_wall_layers() {
-    if (wall_layers.empty() || layers_voted_) {
-        layers_voted_ = false;  // done at the half step, in the vote
-        return;
-    }
+    if (wall_layers.empty()) return;
     PhaseTimer timer(s_.times.integrate);
     s_.particles.backend_reads(kPosition | kVelocity | kSpecies);
     const BackendParticles particles = forces_.backend_particles();

@@ -2,11 +2,12 @@
 // The moves of a step: kicks and drifts of free particles and bodies (the walls act on each
 // drift), the thermostat, the bodies' Langevin bath and the wall layers.
 //
-// The thermostat acts after the step's last drift, on the half-step velocities, so that its
-// sums travel in the rebuild vote's collective: a step waits for the other ranks once. A global
-// rescaling placed there is a splitting of the same dynamics as one at the step's end (the
-// velocity Verlet step, then the thermostat's), as GROMACS's leap-frog couples its
-// thermostats at the half step.
+// The thermostat acts on whole-step velocities between steps. Where it can (velocity Verlet,
+// no walls or bodies, no force reading velocities), it acts at the start of the step and its
+// kinetic energy, summed in the kick-drift's pass, travels in the rebuild vote's collective: a
+// step waits for the other ranks once, and the factor is applied after the drift as if before
+// it (integrate::RescaleBeforeKickDrift). Elsewhere it acts at the step's end with its own
+// global sum.
 #pragma once
 #include <memory>
 #include <optional>
@@ -26,26 +27,26 @@ public:
         : s_(state), near_(neighbourhood), forces_(forces) {}
 
     /// v += kick f/m, x += drift v; then the walls act on the drift (at time `at`).
-    /// `thermostat_next`: the thermostat acts after this drift, so its kinetic energy is
-    /// summed in the same pass where it can be.
-    void kick_drift(double kick, double drift, double at, bool thermostat_next = false);
-    /// v = s v + kick f/m, where s is the thermostat's factor if it was left to this kick
-    /// (otherwise 1).
+    /// `step_start`: this kick-drift starts the step (velocity Verlet's), so the thermostat
+    /// may act before it (see above).
+    void kick_drift(double kick, double drift, double at, bool step_start = false);
+    /// v += kick f/m.
     void kick(double kick);
-    /// What the thermostat and the wall layers need from every rank after the step's last
-    /// drift, this rank's part (summed in Neighbourhood::vote): the thermostat's kinetic energy
-    /// (with rigid bodies the free particles' mass, kinetic energy and momentum); without a
-    /// thermostat, the sums of the wall layers due at the step being completed, where they
-    /// share no particle and fit (else they act at the step's end, apply_wall_layers).
-    struct HalfStepSums {
+    /// What the thermostat acting before this step's kick-drift needs from every rank (this
+    /// rank's kinetic energy) and the largest squared drift of those velocities (to bound the
+    /// displacement the rescaling adds); none where it acts at the step's end.
+    struct VoteSums {
         double values[Neighbourhood::kMaxVoteSums] = {};
         int n = 0;
+        double step_sq = 0;
     };
-    HalfStepSums half_step_sums();
-    /// From the sums over all ranks: the wall layers rescale their particles; the thermostat's
-    /// factor is applied now where the forces or the ghosts read velocities (or bodies are
-    /// present), else left to the next kick.
-    void apply_half_step(const HalfStepSums& total);
+    VoteSums vote_sums() const;
+    /// From the sums over all ranks: the thermostat's factor applied to the velocities the
+    /// kick-drift started from. Returns |factor - 1|: the drift's displacement grows by at most
+    /// that times sqrt(step_sq).
+    double apply_voted_thermostat(const VoteSums& total);
+    /// The thermostat at the step's end, where it did not act in the vote (own global sum).
+    void apply_thermostat();
     void apply_body_langevin();
     /// Keyed by the step just completed.
     void apply_wall_layers();
@@ -55,19 +56,21 @@ public:
     std::vector<std::unique_ptr<WallLayerThermostat>> wall_layers;
 
 private:
-    void thermostat_free_particles(const double* sums);
+    void thermostat_free_particles();
 
     EngineState& s_;
     Neighbourhood& near_;
     ForceEvaluation& forces_;
-    /// This rank's free kinetic energy, summed in the last drift's pass for the thermostat.
-    double drift_kinetic_ = 0;
-    bool drift_kinetic_known_ = false;
-    /// The thermostat's factor, left to the next kick.
-    double kick_scale_ = 1;
-    /// The wall layers measured in this step's vote, rescaled after it.
-    std::vector<WallLayerThermostat*> voted_layers_;
-    bool layers_voted_ = false;
+    /// This step's kick-drift measured the velocities it started from for the thermostat: their
+    /// kinetic energy, their largest squared drift, and the kick's and drift's durations.
+    bool voted_ = false;
+    double drift_kinetic_ = 0, drift_step_sq_ = 0, voted_kick_ = 0, voted_drift_ = 0;
+    /// The thermostat acted in this step's vote: not again at its end.
+    bool thermostat_done_ = false;
+    /// This rank's free kinetic energy, summed in the last kick's pass for the thermostat at
+    /// the step's end.
+    double kick_kinetic_ = 0;
+    bool kick_kinetic_known_ = false;
 };
 
 }  // namespace emergent

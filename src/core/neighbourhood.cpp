@@ -284,32 +284,28 @@ void Neighbourhood::check_count() const {
     }
 }
 
-bool Neighbourhood::vote(double* sums, int n) {
+double Neighbourhood::local_moved_sq() {
     PhaseTimer timer(s_.times.communicate);
-    double local;
     if (drift_moved_known_) {
         drift_moved_known_ = false;
-        local = drift_moved_sq_;
-    } else if (exec::ParticleMirror* mirror = s_.mirror()) {
+        return drift_moved_sq_;
+    }
+    if (exec::ParticleMirror* mirror = s_.mirror()) {
         s_.particles.backend_reads(kPosition);
-        local = exec::transform_max(s_.target, s_.store.n_owned(), 0.0,
-                                    SquaredDisplacement{mirror->array<Vec3>(kPosition), reference_on_backend_});
-    } else {
-        local = list_.max_displacement_sq(s_.store);
+        return exec::transform_max(s_.target, s_.store.n_owned(), 0.0,
+                                   SquaredDisplacement{mirror->array<Vec3>(kPosition), reference_on_backend_});
     }
-    // One sum carries the votes (ranks asking for a build, ranks that saw a runaway) and the
-    // caller's sums: a step waits for the other ranks once.
-    const NeighbourList::Verdict verdict = list_.displacement_verdict(local);
-    double all[2 + kMaxVoteSums] = {double(verdict == NeighbourList::kRebuild), double(verdict == NeighbourList::kRunaway)};
-    for (int k = 0; k < n; ++k) all[2 + k] = sums[k];
-    {
-        PhaseTimer voting(s_.times.collective_wait, built_last_step_ ? &s_.times.collective_wait_after_build : nullptr);
-        decomp::sum_in_place(s_.comm, all, 2 + n);
-    }
-    for (int k = 0; k < n; ++k) sums[k] = all[2 + k];
-    // A runaway is rare: a second collective finds the largest displacement for the message.
-    if (all[1] > 0) list_.rebuild_due(local, s_.comm);
-    bool needed = all[0] > 0;
+    return list_.max_displacement_sq(s_.store);
+}
+
+void Neighbourhood::reduce_vote(double* values, int n) {
+    PhaseTimer timer(s_.times.communicate);
+    PhaseTimer voting(s_.times.collective_wait, s_.after_build_slot());
+    decomp::max_then_sum_in_place(s_.comm, values, n);
+}
+
+bool Neighbourhood::decide(double moved_sq) {
+    bool needed = list_.rebuild_due(moved_sq);
     if (balance_due_) {
         balance_due_ = false;
         if (rebalance()) needed = true;
@@ -321,6 +317,7 @@ void Neighbourhood::follow(bool build, bool defer) {
     if (build) {
         built_this_step_ = true;
         rebuild(true);
+        s_.sum_after_build_pending = true;
         return;
     }
     refresh_ghosts(defer);

@@ -39,14 +39,18 @@ public:
     /// Moves the planes between domains to equal shares of the work (LoadBalance::Cost); where
     /// they moved (returns true) a build must follow. Collective.
     bool rebalance();
-    /// After a drift, the step's one collective: whether the list must be rebuilt (some
-    /// particle on some rank moved beyond half the skin since the last build, or the planes
-    /// move), voted in the same global sum as the caller's `n` sums (at most kMaxVoteSums,
-    /// e.g. the thermostat's), which then hold the totals. Throws InstabilityError where a
-    /// particle ran away (not finite, or beyond cutoff + skin).
+    /// After a drift, the step's one collective in three parts. This rank's largest squared
+    /// displacement since the last build (taken in the drift's pass, or measured now).
+    double local_moved_sq();
+    /// `values` over all ranks in one reduction, in place: the first decomp::kVoteMaxima as
+    /// maxima (the displacement, and what else bounds it), the rest summed (the thermostat's).
     static constexpr int kMaxVoteSums = 32;
-    bool vote(double* sums, int n);
-    /// Then the list is rebuilt (`build`: what vote() said), or the ghosts follow their owners.
+    void reduce_vote(double* values, int n);
+    /// Whether the list must be rebuilt, from the largest squared displacement over the ranks
+    /// (or a bound on it): beyond half the skin, or the planes move. Throws InstabilityError
+    /// where a particle ran away (not finite, or beyond cutoff + skin).
+    bool decide(double moved_sq);
+    /// Then the list is rebuilt (`build`: what decide() said), or the ghosts follow their owners.
     /// `defer`: the forces that follow are not sampled, so the ghosts' refresh may overlap them.
     void follow(bool build, bool defer);
 
@@ -90,9 +94,6 @@ public:
     /// The step rebuilt the list.
     bool built_this_step() const { return built_this_step_; }
     void begin_step(bool balance_due) {
-        // The first global sum after a build (the next step's vote) waits for the ranks that
-        // built slower: its wait is counted apart.
-        built_last_step_ = built_this_step_;
         built_this_step_ = false;
         balance_due_ = balance_due;
     }
@@ -135,7 +136,6 @@ private:
     std::vector<std::pair<std::int64_t, Vec3>> restored_reference_;
     bool bodies_dealt_ = false;
     bool built_this_step_ = false;
-    bool built_last_step_ = false;
     bool balance_due_ = false;  ///< the planes move at this step's next drift
     double drift_moved_sq_ = 0;
     bool drift_moved_known_ = false;

@@ -274,14 +274,23 @@ double Simulation::cost_imbalance() const {
 
 namespace {
 
-/// After a drift: the step's one collective (the rebuild vote, after the step's last drift with
-/// the thermostat's or the wall layers' sums), their rescaling, then the list rebuilt or the
-/// ghosts refreshed.
-void settle_drift(Integration& motion, Neighbourhood& near, bool defer, bool last_drift) {
-    Integration::HalfStepSums sums = last_drift ? motion.half_step_sums() : Integration::HalfStepSums{};
-    const bool build = near.vote(sums.values, sums.n);
-    if (last_drift) motion.apply_half_step(sums);
-    near.follow(build, defer);
+/// After a drift: the step's one collective (the rebuild vote, with the thermostat's sum where
+/// it acts at the step's start), the thermostat, then the list rebuilt or the ghosts refreshed.
+void settle_drift(Integration& motion, Neighbourhood& near, bool defer) {
+    Integration::VoteSums sums = motion.vote_sums();
+    double values[decomp::kVoteMaxima + Neighbourhood::kMaxVoteSums] = {near.local_moved_sq(), sums.step_sq};
+    std::copy(sums.values, sums.values + sums.n, values + decomp::kVoteMaxima);
+    near.reduce_vote(values, decomp::kVoteMaxima + sums.n);
+    std::copy(values + decomp::kVoteMaxima, values + decomp::kVoteMaxima + sums.n, sums.values);
+    // The rescaling moves each particle by at most |factor - 1| times its drift: the largest
+    // displacement is bounded by the sum of the two largest (a NaN carried through).
+    const double change = motion.apply_voted_thermostat(sums);
+    double moved_sq = values[0];
+    if (change > 0) {
+        const double bound = std::sqrt(values[0]) + change * std::sqrt(values[1]);
+        moved_sq = bound * bound;
+    }
+    near.follow(near.decide(moved_sq), defer);
 }
 
 }  // namespace
@@ -297,7 +306,7 @@ void Simulation::step(bool sample) {
     switch (e.settings.integrator) {
     case Integrator::VelocityVerlet:
         e.motion.kick_drift(0.5 * dt, dt, e.time, true);
-        settle_drift(e.motion, e.neighbourhood, !sample, true);
+        settle_drift(e.motion, e.neighbourhood, !sample);
         e.forces.compute(sample, e.time + dt);
         e.motion.kick(0.5 * dt);
         break;
@@ -306,15 +315,16 @@ void Simulation::step(bool sample) {
         // Comput. Phys. Commun. 146 (2002) 188, eq. 31).
         constexpr double lambda = 0.1931833275037836;
         e.motion.kick_drift(lambda * dt, 0.5 * dt, e.time);
-        settle_drift(e.motion, e.neighbourhood, true, false);
+        settle_drift(e.motion, e.neighbourhood, true);
         e.forces.compute(false, e.time + 0.5 * dt);
-        e.motion.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt, e.time + 0.5 * dt, true);
-        settle_drift(e.motion, e.neighbourhood, !sample, true);
+        e.motion.kick_drift((1 - 2 * lambda) * dt, 0.5 * dt, e.time + 0.5 * dt);
+        settle_drift(e.motion, e.neighbourhood, !sample);
         e.forces.compute(sample, e.time + dt);
         e.motion.kick(lambda * dt);
         break;
     }
     }
+    e.motion.apply_thermostat();
     e.motion.apply_body_langevin();
     ++e.step;
     e.time += dt;

@@ -28,21 +28,43 @@ struct KickDrift {
     }
 };
 
-/// v = scale v + kick f/m with the new forces (velocity Verlet: the second half kick, dt/2;
-/// scale: a thermostat's factor left to this pass, else 1).
+/// v += kick f/m with the new forces (velocity Verlet: the second half kick, dt/2).
 struct Kick {
     Vec3* v;
     const Vec3* f;
     const int* species;
     const Real* inverse_mass;
     Real kick;
-    Real scale = 1;
 
     EMERGENT_HD void operator()(std::size_t i) const {
         const Real h = kick * inverse_mass[species[i]];
-        v[i].x = scale * v[i].x + h * f[i].x;
-        v[i].y = scale * v[i].y + h * f[i].y;
-        v[i].z = scale * v[i].z + h * f[i].z;
+        v[i].x += h * f[i].x;
+        v[i].y += h * f[i].y;
+        v[i].z += h * f[i].z;
+    }
+};
+
+/// A velocity rescaling v0 -> factor v0 of the velocities a KickDrift started from, applied
+/// after it: with v0 = v - kick f/m, v += change v0 and x += drift change v0 (change = factor
+/// - 1), the state the KickDrift would have left from the rescaled velocities (up to rounding).
+/// So a thermostat acting at the start of a step can take its sum in the vote after the drift.
+struct RescaleBeforeKickDrift {
+    Vec3* x;
+    Vec3* v;
+    const Vec3* f;
+    const int* species;
+    const Real* inverse_mass;
+    Real kick, drift, change;
+
+    EMERGENT_HD void operator()(std::size_t i) const {
+        const Real h = kick * inverse_mass[species[i]];
+        const Vec3 v0{v[i].x - h * f[i].x, v[i].y - h * f[i].y, v[i].z - h * f[i].z};
+        v[i].x += change * v0.x;
+        v[i].y += change * v0.y;
+        v[i].z += change * v0.z;
+        x[i].x += drift * change * v0.x;
+        x[i].y += drift * change * v0.y;
+        x[i].z += drift * change * v0.z;
     }
 };
 

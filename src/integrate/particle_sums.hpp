@@ -24,13 +24,16 @@ struct FreeKineticEnergy {
     }
 };
 
-/// A drift's two measures, reduced in its pass: the free kinetic energy (summed) and the largest
-/// squared displacement since the list was built (a NaN kept, as exec::transform_max does).
-struct KineticAndMoved {
-    double kinetic = 0, moved_sq = 0;
-    EMERGENT_HD KineticAndMoved& operator+=(const KineticAndMoved& o) {
+/// A kick-drift's measures, reduced in its pass: the free kinetic energy of the velocities it
+/// started from (summed), the largest squared displacement since the list was built (a NaN
+/// kept, as exec::transform_max does) and the largest squared drift those velocities alone
+/// would make.
+struct DriftMeasures {
+    double kinetic = 0, moved_sq = 0, step_sq = 0;
+    EMERGENT_HD DriftMeasures& operator+=(const DriftMeasures& o) {
         kinetic += o.kinetic;
         moved_sq = exec::max_keeping_nan(moved_sq, o.moved_sq);
+        step_sq = exec::max_keeping_nan(step_sq, o.step_sq);
         return *this;
     }
 };

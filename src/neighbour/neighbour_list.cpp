@@ -486,18 +486,17 @@ bool NeighbourList::needs_rebuild(const ParticleStore& store, MPI_Comm comm) con
     return rebuild_due(max_displacement_sq(store), comm);
 }
 
-NeighbourList::Verdict NeighbourList::displacement_verdict(double local) const {
-    if (!(local <= list_cutoff() * list_cutoff())) return kRunaway;  // NaN included
-    return local > 0.25 * skin_ * skin_ ? kRebuild : kKeep;
-}
-
 bool NeighbourList::rebuild_due(double local, MPI_Comm comm) const {
     // NaN is mapped to +inf so the MPI max carries it to every rank.
     if (std::isnan(local)) local = std::numeric_limits<double>::infinity();
     double global = 0;
     exec::count_collective();
     MPI_Allreduce(&local, &global, 1, MPI_DOUBLE, MPI_MAX, comm);
-    if (std::isinf(global))
+    return rebuild_due(global);
+}
+
+bool NeighbourList::rebuild_due(double global) const {
+    if (std::isinf(global) || std::isnan(global))
         throw InstabilityError("non-finite particle position: the run went unstable "
                                "(time step too large, overlapping start, or forces too strong)");
     // The list is rebuilt as soon as some particle passes skin/2, so a displacement beyond

@@ -69,11 +69,9 @@ public:
     /// The same from this rank's largest squared displacement, found elsewhere (on a back
     /// end). Collective; throws InstabilityError for a non-finite or impossible displacement.
     bool rebuild_due(double local_max_displacement_sq, MPI_Comm comm) const;
-    /// This rank's part of that decision, for a vote summed with other sums (one collective
-    /// for the step): kKeep, kRebuild (a particle moved beyond skin/2) or kRunaway (a position
-    /// not finite, or moved beyond cutoff + skin: rebuild_due then says which, and throws).
-    enum Verdict { kKeep = 0, kRebuild = 1, kRunaway = 2 };
-    Verdict displacement_verdict(double local_max_displacement_sq) const;
+    /// The same from the largest squared displacement over all ranks (or a bound on it), reduced
+    /// elsewhere (a NaN kept): not collective.
+    bool rebuild_due(double global_max_displacement_sq) const;
 
     /// Owned positions when the list was built (the origin of the displacement check).
     const std::vector<Vec3>& reference_positions() const { return built_at_; }

@@ -32,7 +32,7 @@ case $scene in
     # The split at 650 falls inside a field frame (600, 800] whose roll census compares with the
     # frame before, and inside the inner cylinder's speed ramp (t = 2..4 tau: steps 400..800).
     eq=0 splits=650 total=1200
-    regrouped=inner_wall_exchange,outer_wall_exchange,radial_velocity_midgap,radial_velocity_rms,axial_mode,fields
+    regrouped=inner_wall_exchange,outer_wall_exchange,radial_velocity_midgap,radial_velocity_rms,fields
     settings=(--preset tiny --set sample_every=50 --set fields.interval=200 --set output.every=400
               --set spin_up_time=2 --set spin_up_omega=0.1 --set spin_up_ramp=2) ;;
   vibrated-sawtooth)
