@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "decomposition/load_balance.hpp"
 #include "decomposition/rank_grid.hpp"
+#include "decomposition/reductions.hpp"
 #include "emergent/random.hpp"
 #include "support/scene_fixture.hpp"
 
@@ -240,4 +243,25 @@ TEST(Decomposition, CostImbalanceOfAnUnevenLayout) {
     EXPECT_GT(expected, 1.1);  // the layout is uneven: the check tells it from 1
     // And the brute force over the list's positions agrees (the same rule, from positions).
     EXPECT_NEAR(imbalance_by_brute_force(sim, 1.122462048309373 + rs.skin), expected, 1e-12);
+}
+
+TEST(Reductions, TheStepVoteTakesMaximaAndSumsInOneCollective) {
+    // The rebuild vote's user operation: the first decomp::kVoteMaxima values are maxima (a NaN
+    // on any rank wins, so every rank stops together), the rest sums; every rank gets the same.
+    int rank = 0, size = 1;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    ASSERT_EQ(decomp::kVoteMaxima, 2);
+    double v[5] = {double(rank), -double(rank), 1.0, double(rank), 0.5};
+    decomp::max_then_sum_in_place(MPI_COMM_WORLD, v, 5);
+    EXPECT_EQ(v[0], double(size - 1));
+    EXPECT_EQ(v[1], 0.0);
+    EXPECT_EQ(v[2], double(size));
+    EXPECT_EQ(v[3], double(size * (size - 1) / 2));
+    EXPECT_EQ(v[4], 0.5 * size);
+    double w[3] = {rank == size - 1 ? std::numeric_limits<double>::quiet_NaN() : 1.0, 2.0, 1.0};
+    decomp::max_then_sum_in_place(MPI_COMM_WORLD, w, 3);
+    EXPECT_TRUE(std::isnan(w[0]));
+    EXPECT_EQ(w[1], 2.0);
+    EXPECT_EQ(w[2], double(size));
 }
