@@ -105,12 +105,8 @@ void Integration::kick(double kick) {
 }
 
 Integration::VoteSums Integration::vote_sums() const {
-    VoteSums local;
-    if (!voted_) return local;
-    local.values[0] = drift_kinetic_;
-    local.n = 1;
-    local.step_sq = drift_step_sq_;
-    return local;
+    if (!voted_) return {};
+    return {true, drift_kinetic_, drift_step_sq_};
 }
 
 double Integration::apply_voted_thermostat(const VoteSums& total) {
@@ -118,7 +114,7 @@ double Integration::apply_voted_thermostat(const VoteSums& total) {
     voted_ = false;
     PhaseTimer timer(s_.times.integrate);
     ParticleStore& store = s_.store;
-    const double factor = thermostat->scale_factor(total.values[0], s_.dof(), s_.step, s_.settings.dt);
+    const double factor = thermostat->scale_factor(total.kinetic, s_.dof(), s_.step, s_.settings.dt);
     s_.particles.backend_reads(kPosition | kVelocity | kForce | kSpecies);
     exec::for_each(s_.target, store.n_owned(),
                    integrate::RescaleBeforeKickDrift{s_.data(kPosition, store.position), s_.data(kVelocity, store.velocity),

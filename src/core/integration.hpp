@@ -36,9 +36,8 @@ public:
     /// rank's kinetic energy) and the largest squared drift of those velocities (to bound the
     /// displacement the rescaling adds); none where it acts at the step's end.
     struct VoteSums {
-        double values[Neighbourhood::kMaxVoteSums] = {};
-        int n = 0;
-        double step_sq = 0;
+        bool present = false;  ///< the thermostat acts in this step's vote
+        double kinetic = 0, step_sq = 0;
     };
     VoteSums vote_sums() const;
     /// From the sums over all ranks: the thermostat's factor applied to the velocities the

@@ -44,7 +44,6 @@ public:
     double local_moved_sq();
     /// `values` over all ranks in one reduction, in place: the first decomp::kVoteMaxima as
     /// maxima (the displacement, and what else bounds it), the rest summed (the thermostat's).
-    static constexpr int kMaxVoteSums = 32;
     void reduce_vote(double* values, int n);
     /// Whether the list must be rebuilt, from the largest squared displacement over the ranks
     /// (or a bound on it): beyond half the skin, or the planes move. Throws InstabilityError

@@ -278,10 +278,10 @@ namespace {
 /// it acts at the step's start), the thermostat, then the list rebuilt or the ghosts refreshed.
 void settle_drift(Integration& motion, Neighbourhood& near, bool defer) {
     Integration::VoteSums sums = motion.vote_sums();
-    double values[decomp::kVoteMaxima + Neighbourhood::kMaxVoteSums] = {near.local_moved_sq(), sums.step_sq};
-    std::copy(sums.values, sums.values + sums.n, values + decomp::kVoteMaxima);
-    near.reduce_vote(values, decomp::kVoteMaxima + sums.n);
-    std::copy(values + decomp::kVoteMaxima, values + decomp::kVoteMaxima + sums.n, sums.values);
+    // Two maxima (decomp::kVoteMaxima: the displacement, the drift), then the kinetic energy.
+    double values[3] = {near.local_moved_sq(), sums.step_sq, sums.kinetic};
+    near.reduce_vote(values, sums.present ? 3 : 2);
+    sums.kinetic = values[2];
     // The rescaling moves each particle by at most |factor - 1| times its drift: the largest
     // displacement is bounded by the sum of the two largest (a NaN carried through).
     const double change = motion.apply_voted_thermostat(sums);
