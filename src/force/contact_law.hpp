@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "force/granular_contact.hpp"
-#include "force/neighbour_loop.hpp"
+#include "emergent/neighbour_loop.hpp"
 
 namespace emergent::force {
 

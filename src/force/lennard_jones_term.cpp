@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: MIT
-// The Lennard-Jones force term: its evaluator (lennard_jones.hpp) in the radial pair term.
+// The Lennard-Jones force term: its evaluator (lennard_jones.hpp) in the radial pair term
+// (emergent/pair_law.hpp), or in the generic one for benchmarks.
 #include <memory>
 #include <sstream>
 
 #include "emergent/error.hpp"
 #include "force/lennard_jones.hpp"
-#include "force/radial_pair_term.hpp"
+#include "force/generic_pair_term.hpp"
 
 namespace emergent {
 
@@ -17,7 +18,8 @@ std::unique_ptr<ForceTerm> make_lennard_jones(double epsilon, double sigma, doub
         throw InputError(msg.str());
     }
     const force::LennardJones eval(force::LennardJones::Params{epsilon, sigma, cutoff});
-    return std::make_unique<force::RadialPairTerm<force::LennardJones>>("lennard-jones", eval, cutoff, generic);
+    if (generic) return std::make_unique<force::GenericPairTerm<force::LennardJones>>("lennard-jones", eval, cutoff);
+    return make_pair_term("lennard-jones", eval, cutoff);
 }
 
 }  // namespace emergent

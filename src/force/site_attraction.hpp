@@ -8,7 +8,7 @@
 
 #include "emergent/force_term.hpp"
 #include "emergent/vec3.hpp"
-#include "force/neighbour_loop.hpp"
+#include "emergent/neighbour_loop.hpp"
 
 namespace emergent::force {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The worked example of docs/plugins.md, "A new pair law": a soft harmonic repulsion written as
-// one evaluator and made a force term by RadialPairTerm. Its forces are minus the gradient of its
+// one evaluator and made a force term by make_pair_term (emergent/pair_law.hpp, public). Its forces are minus the gradient of its
 // energy (central differences), the half list's and the full list's agree, and the pairs' forces
 // cancel (Newton's third law).
 #include <gtest/gtest.h>
@@ -10,7 +10,7 @@
 #include "decomposition/halo_exchange.hpp"
 #include "decomposition/rank_grid.hpp"
 #include "emergent/execution.hpp"
-#include "force/radial_pair_term.hpp"
+#include "emergent/pair_law.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "support/random_points.hpp"
@@ -35,7 +35,7 @@ struct SoftSphere {
     }
 };
 std::unique_ptr<ForceTerm> make_soft_spheres(double eps, double sigma) {
-    return std::make_unique<force::RadialPairTerm<SoftSphere>>("soft-spheres", SoftSphere(eps, sigma), sigma, false);
+    return make_pair_term("soft-spheres", SoftSphere(eps, sigma), sigma);
 }
 // --- end of the example ---
 

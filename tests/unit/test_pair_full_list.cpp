@@ -10,7 +10,7 @@
 #include "decomposition/rank_grid.hpp"
 #include "emergent/execution.hpp"
 #include "force/lennard_jones.hpp"
-#include "force/radial_pair_law.hpp"
+#include "emergent/pair_law.hpp"
 #include "neighbour/cell_list.hpp"
 #include "neighbour/neighbour_list.hpp"
 #include "support/random_points.hpp"
