@@ -48,6 +48,11 @@ for path in list(sources("src")) + list(sources("decomposition")):
     if ext in (".cpp", ".cu"):
         implemented.setdefault(stem, folder_of(path))
 
+# Public headers with no NAME.cpp of their own, and the folder they belong to.
+HEADER_ONLY = {"neighbour_loop": "force", "pair_law": "force"}
+for stem, folder in HEADER_ONLY.items():
+    implemented.setdefault(stem, folder)
+
 engine_files = list(sources("src")) + list(sources("decomposition"))
 for path in engine_files:
     me = folder_of(path)

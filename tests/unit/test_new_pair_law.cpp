@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
-// The worked example of docs/plugins.md, "A new pair law": a soft harmonic repulsion written as
-// one evaluator and made a force term by make_pair_term (emergent/pair_law.hpp, public). Its forces are minus the gradient of its
-// energy (central differences), the half list's and the full list's agree, and the pairs' forces
-// cancel (Newton's third law).
+// A new pair law as docs/plugins.md shows it: a soft harmonic repulsion (the worked example's
+// law at r_c = 1, a = eps) written as one evaluator and made a force term by make_pair_term
+// (emergent/pair_law.hpp). Its forces are minus the gradient of its energy (central
+// differences), the half list's and the full list's agree, and the pairs' forces cancel.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -18,7 +18,7 @@
 using namespace emergent;
 
 namespace {
-// --- the example as docs/plugins.md shows it ---
+// --- the law ---
 /// u(r) = eps/2 (1 - r/sigma)^2 for r < sigma: soft spheres that may overlap (a DPD-like
 /// conservative repulsion).
 struct SoftSphere {
@@ -37,7 +37,7 @@ struct SoftSphere {
 std::unique_ptr<ForceTerm> make_soft_spheres(double eps, double sigma) {
     return make_pair_term("soft-spheres", SoftSphere(eps, sigma), sigma);
 }
-// --- end of the example ---
+// --- end of the law ---
 
 /// A periodic box of overlapping soft spheres, its list built (half or full) on one rank.
 struct Fixture {
