@@ -17,7 +17,9 @@
 # Each run goes to OUT/SCENE_seedS (OUT/SCENE without --seed): the run's own output, run.log
 # (the command, machine, the engine's progress lines) and check.log (the build's commit, what
 # the check measured and its verdict).
-# Exit: 0 every phenomenon shown, 1 some check failed, 2 a run or the input failed.
+# Exit: 0 every phenomenon shown, 1 some check failed, 2 a run or the input failed, 3 a run was
+# stopped on request with a checkpoint (SIGUSR1, SIGTERM: the engine's exit 5) and nothing
+# failed (2 before 1 before 3).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 scenes=() seed="" preset=small ranks=2 out=/tmp/emergent_phenomena sets=() every=() resume=0
@@ -75,6 +77,12 @@ for scene in "${scenes[@]}"; do
   mpirun -q --oversubscribe -np "$ranks" "$exe" "${args[@]}" >>"$dir/run.log" 2>&1
   rc=$?
   echo "# exit $rc after $(( $(date +%s) - start )) s" >>"$dir/run.log"
+  if [ $rc -eq 5 ] && [ -e "$dir/checkpoint.h5" ]; then
+    # Stopped on request, not failed: the engine left a checkpoint to go on from.
+    verdicts+=("STOPPED: $scene: stopped on request with a checkpoint; go on with the same command and --continue ($dir/run.log)")
+    [ $status -eq 0 ] && status=3
+    continue
+  fi
   if [ $rc -ne 0 ]; then
     verdicts+=("ERROR: $scene: the run failed (exit $rc; $dir/run.log)")
     status=2
@@ -88,7 +96,7 @@ for scene in "${scenes[@]}"; do
   verdict=$(tail -n 1 "$dir/check.log")
   case $rc in
     0) ;;
-    1) [ $status -eq 0 ] && status=1 ;;
+    1) [ $status -ne 2 ] && status=1 ;;
     *) status=2; verdict="ERROR: $scene: $verdict" ;;
   esac
   verdicts+=("$verdict (seed ${seed:-preset}, $dir)")
