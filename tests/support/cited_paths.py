@@ -7,7 +7,7 @@ Scans README.md, docs/**/*.md, benchmarks/RESULTS.md and benchmarks/results/*.md
 inline code (`...`), in fenced code blocks and in markdown links, and prints FILE:LINE: PATH for
 each one that names nothing in the tree; exit 1 if any, 0 otherwise. A word counts as a
 repository path when its first component is a top-level entry of the tree (benchmarks/, docs/,
-scripts/, src/, ...) or when it looks like a root document (README.md, ARCHITECTURE.md); other
+scripts/, src/, ...) or when it looks like a root document (README.md, RESULTS.md); other
 words (`trajectory.h5`, `DIR/summary.json`, `emergent/kit/capsomer.hpp`) are file names in
 another frame and are left alone. Globs and brace lists (`benchmarks/logs/phenomena/
 taylor-couette_seed*/`, `figures/x-{a,b}.png`) must match at least one path. Markdown link

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The engine's layers hold (ARCHITECTURE.md, "Layers"): no include from a lower layer to a
+"""The engine's layers hold (docs/architecture.md, "Layers"): no include from a lower layer to a
 higher one, scenes only through the public headers, the engine's API apart from the scene kit.
 
 usage: layers.py SOURCE_DIR
@@ -57,7 +57,7 @@ engine_files = list(sources("src")) + list(sources("decomposition"))
 for path in engine_files:
     me = folder_of(path)
     if me not in RANK:
-        failures.append(f"{path}: folder '{me}' is in no layer (tests/support/layers.py, ARCHITECTURE.md)")
+        failures.append(f"{path}: folder '{me}' is in no layer (tests/support/layers.py, docs/architecture.md)")
         continue
     for target in INCLUDE.findall(open(os.path.join(root, path)).read()):
         head = target.split("/")[0]
