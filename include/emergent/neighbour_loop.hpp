@@ -11,12 +11,17 @@
 // which the loop then skips; a law may instead return every pair, with zero force beyond its
 // range (branch-free: where about half the listed pairs lie beyond the cutoff at random, a
 // masked multiply costs less than the mispredicted branch), and may choose per list
-// (`HalfList::kHost`: the half list is the host's).
+// (`HalfList::kHost`: the half list is the host's). A law whose pairs mostly lie beyond its
+// range (contacts: the list holds the skin too) may add `in_range(i, j, d)`, which reads only
+// positions and diameters: the loop then reads a partner's velocity and species only for the
+// pairs in range.
 #pragma once
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 #include "emergent/vec3.hpp"
 
@@ -63,14 +68,35 @@ struct PairSums {
     Real energy = 0, virial = 0, overlap = 0;
 };
 
+/// True when `Law` has `in_range(const PairMember&, const PairMember&, const Vec3&)`.
+template <class Law, class = void>
+struct HasRangeTest : std::false_type {};
+template <class Law>
+struct HasRangeTest<Law, std::void_t<decltype(std::declval<const Law&>().in_range(
+                             std::declval<const PairMember&>(), std::declval<const PairMember&>(),
+                             std::declval<const Vec3&>()))>> : std::true_type {};
+
+/// What the range test reads of particle `i`: its position, and its diameter where the law needs it.
+template <class Law>
+EMERGENT_HD PairMember near_member(const PairArrays& a, std::size_t i) {
+    PairMember m;
+    m.x = a.x[i];
+    if constexpr ((Law::needs & kNeedsDiameter) != 0) m.diameter = a.diameter[i];
+    return m;
+}
+
+/// The rest of what `Law` reads of particle `i`.
+template <class Law>
+EMERGENT_HD void complete_member(const PairArrays& a, std::size_t i, PairMember& m) {
+    if constexpr ((Law::needs & kNeedsVelocity) != 0) m.v = a.v[i];
+    if constexpr ((Law::needs & kNeedsSpecies) != 0) m.species = a.species[i];
+}
+
 /// Particle `i` as law `Law` reads it.
 template <class Law>
 EMERGENT_HD PairMember pair_member(const PairArrays& a, std::size_t i) {
-    PairMember m;
-    m.x = a.x[i];
-    if constexpr ((Law::needs & kNeedsVelocity) != 0) m.v = a.v[i];
-    if constexpr ((Law::needs & kNeedsDiameter) != 0) m.diameter = a.diameter[i];
-    if constexpr ((Law::needs & kNeedsSpecies) != 0) m.species = a.species[i];
+    PairMember m = near_member<Law>(a, i);
+    complete_member<Law>(a, i, m);
     return m;
 }
 
@@ -82,7 +108,14 @@ EMERGENT_HD void pair_row(const Law& law, const PairArrays& a, std::size_t i, st
     const PairMember mi = pair_member<Law>(a, i);
     for (std::uint32_t k = a.offset[i]; k < a.offset[i + 1]; ++k) {
         const std::uint32_t j = a.index[k];
-        const PairMember mj = pair_member<Law>(a, j);
+        PairMember mj;
+        if constexpr (HasRangeTest<Law>::value) {
+            mj = near_member<Law>(a, j);
+            if (!law.in_range(mi, mj, mi.x - mj.x)) continue;
+            complete_member<Law>(a, j, mj);
+        } else {
+            mj = pair_member<Law>(a, j);
+        }
         PairTerm t;
         if (!law.template pair<List, Sample>(mi, mj, mi.x - mj.x, t)) continue;
         fi += t.f;

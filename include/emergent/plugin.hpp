@@ -16,7 +16,7 @@
 
 /// Changes whenever the public headers change (tests/plugin/interface_digest.cmake enforces it);
 /// what changed at each tag: docs/plugin_abi.md.
-#define EMERGENT_PLUGIN_ABI "emergent-plugin-41"
+#define EMERGENT_PLUGIN_ABI "emergent-plugin-42"
 
 #define EMERGENT_PLUGIN(info_function)                                               \
     extern "C" const char* emergent_plugin_abi() { return EMERGENT_PLUGIN_ABI; }     \

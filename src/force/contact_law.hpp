@@ -29,6 +29,12 @@ struct ContactLaw {
     int n_species;
     Real half_range;  ///< r_c = half_range (d_i + d_j)
 
+    /// Most listed pairs lie beyond contact: their velocities and species are never read.
+    EMERGENT_HD bool in_range(const PairMember& i, const PairMember& j, const Vec3& r) const {
+        const Real rc = half_range * (i.diameter + j.diameter);
+        return dot(r, r) < rc * rc;
+    }
+
     template <class List, bool Sample>
     EMERGENT_HD bool pair(const PairMember& i, const PairMember& j, const Vec3& r, PairTerm& t) const {
         const Real r2 = dot(r, r), rc = half_range * (i.diameter + j.diameter);
