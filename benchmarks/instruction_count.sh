@@ -18,7 +18,7 @@ while [ $# -gt 0 ] && [ "$1" != -- ]; do exes+=("$1"); shift; done
 . benchmarks/common.sh
 settle_checkpoint "${exes[0]}" 2 100 "$scene" --preset small "$@"
 engine_work() {  # the instructions of one cachegrind file outside the MPI library
-  cg_annotate --auto=no "$1" | sed -n '/Ir.*file:function/,$p' | awk 'NR > 2 {
+  cg_annotate --auto=no --threshold=0 "$1" | sed -n '/Ir.*file:function/,$p' | awk 'NR > 2 {
     gsub(",", "", $1); if ($0 !~ /\?\?\?:\?\?\?|opal_|ompi_|NBC_|libnbc|mca_/) w += $1 } END {printf "%.0f\n", w}'
 }
 for k in "${!exes[@]}"; do
