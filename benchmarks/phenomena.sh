@@ -18,8 +18,10 @@
 # (the command, machine, the engine's progress lines) and check.log (the build's commit, what
 # the check measured and its verdict).
 # Exit: 0 every phenomenon shown, 1 some check failed, 2 a run or the input failed, 3 a run was
-# stopped on request with a checkpoint (SIGUSR1, SIGTERM: the engine's exit 5) and nothing
-# failed (2 before 1 before 3).
+# stopped on request with a checkpoint (the engine's exit 5: SIGUSR1 to mpirun or the ranks,
+# SIGTERM or SIGINT to the ranks) and nothing failed (2 before 1 before 3). After a SIGTERM to
+# mpirun the ranks checkpoint but mpirun exits with its own status (an ERROR line here);
+# --continue goes on from that checkpoint all the same.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 scenes=() seed="" preset=small ranks=2 out=/tmp/emergent_phenomena sets=() every=() resume=0
