@@ -34,6 +34,22 @@ assert times == [1.25 * k for k in range(1, 7)], times
 assert all(r[2].strip() != "-" for r in continued), continued
 assert len(rows) == 6 + 2, rows
 PY
+# The seeds' figure is drawn from such tables alone (the continued run's: 6 frames, the last
+# quarter its last 1.5 of them, so frames 5 and 6 after rounding down): its printed quarter
+# mean is that of the table's Nusselt numbers there.
+"$scripts/plot_rayleigh_benard_seeds" "$dir/seeds.png" "$dir/cmp.txt=continued" >"$dir/seeds.txt"
+[ -s "$dir/seeds.png" ] || { echo "FAIL: plot_rayleigh_benard_seeds wrote no figure"; exit 1; }
+/usr/bin/python3 - "$dir/cmp.txt" "$dir/seeds.txt" <<'PY'
+import re, sys
+rows = [l.split("|")[1:-1] for l in open(sys.argv[1]) if l.startswith("| ") and "t (tau)" not in l][:6]
+nu = [float(r[2]) for r in rows]
+printed = open(sys.argv[2]).read()
+got = float(re.search(r"last quarter \(2 frames\): Nu ([0-9.]+)", printed).group(1))
+assert abs(got - (nu[4] + nu[5]) / 2) < 6e-4, (got, nu, printed)
+PY
+if "$scripts/plot_rayleigh_benard_seeds" "$dir/none.png" "$dir/rb/summary.json" >/dev/null 2>&1; then
+  echo "FAIL: plot_rayleigh_benard_seeds took a file without a frame table"; exit 1
+fi
 "$exe" run rotating-drum --preset tiny --set progress_interval=0 -o "$dir/rd" >/dev/null
 "$scripts/plot_rotating_drum" "$dir/rd" "$dir/rd/fig" >/dev/null
 "$exe" run vibrated-sawtooth --preset tiny --set steps=5000 --set sample_every=250 \
