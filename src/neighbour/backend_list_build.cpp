@@ -225,26 +225,30 @@ void BackendListBuild::pack(const exec::Target& target, exec::ParticleMirror& mi
                             std::size_t count, std::uint32_t* out, bool image, const Vec3& shift,
                             int turns, const Wedge& wedge) {
     std::size_t offset = 0;
-    // The fields copied as they are go in one pass; moved positions and turned velocities in
-    // their own.
+    // One pass: the fields copied as they are, and for ghosts the positions moved to their
+    // image and the velocities turned.
     build::FieldGather plain;
+    build::GatherImages images{{plain, index}, {nullptr, index, nullptr, wedge, turns, shift},
+                               {nullptr, index, nullptr, wedge, 0}};
     mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
         if (field == kForce) return;
         const unsigned words = static_cast<unsigned>(bytes / 4);
         std::uint32_t* to = out + offset;
-        if (image && field == kPosition)
-            exec::for_each(target, count,
-                           decomp::GhostImage{static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to),
-                                              wedge, turns, shift});
-        else if (image && turns && field == kVelocity)
-            exec::for_each(target, count,
-                           build::TurnedCopy{static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to),
-                                             wedge, turns});
-        else
+        if (image && field == kPosition) {
+            images.position.in = static_cast<const Vec3*>(data);
+            images.position.out = reinterpret_cast<Vec3*>(to);
+        } else if (image && turns && field == kVelocity) {
+            images.velocity = {static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to), wedge, turns};
+        } else {
             add_field(plain, static_cast<const std::uint32_t*>(data), to, words);
+        }
         offset += count * words;
     });
-    exec::for_each(target, count, build::GatherFields<int>{plain, index});
+    images.fields.fields = plain;
+    if (image)
+        exec::for_each(target, count, images);
+    else
+        exec::for_each(target, count, build::GatherFields<int>{plain, index});
 }
 
 void BackendListBuild::add_field(build::FieldGather& gather, const std::uint32_t* from, std::uint32_t* to,
@@ -460,18 +464,17 @@ struct BackendListBuild::BackendPlace {
             mirror.resize_on_backend(store, store.n_owned(), store.n_ghost() + count);
             build::FieldGather copies;
             mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
-                if (field == kForce || field == kPosition) return;
+                if (field == kForce || field == kPosition || (route.turns && field == kVelocity)) return;
                 const unsigned words = static_cast<unsigned>(bytes / 4);
                 std::uint32_t* a = static_cast<std::uint32_t*>(data);
                 add_field(copies, a, a + import_first * words, words);
             });
-            exec::for_each(target, count, build::GatherFields<int>{copies, index});
             Vec3* x = mirror.array<Vec3>(kPosition);
-            exec::for_each(target, count, decomp::GhostImage{x, index, x + import_first, wedge, route.turns, route.shift});
-            if (route.turns) {
-                Vec3* v = mirror.array<Vec3>(kVelocity);
-                exec::for_each(target, count, build::TurnedCopy{v, index, v + import_first, wedge, route.turns});
-            }
+            Vec3* v = mirror.array<Vec3>(kVelocity);
+            exec::for_each(target, count,
+                           build::GatherImages{{copies, index},
+                                               {x, index, x + import_first, wedge, route.turns, route.shift},
+                                               {v, index, v + import_first, wedge, route.turns}});
             return count;
         }
         std::uint32_t* packed = build.buffer(mirror, kSend, count * build.packed_words(mirror));

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "decomposition/ghost_image.hpp"
 #include "emergent/box.hpp"
 #include "emergent/quaternion.hpp"
 #include "emergent/vec3.hpp"
@@ -499,6 +500,21 @@ struct TurnedCopy {
     Wedge wedge;
     int turns;
     EMERGENT_HD void operator()(std::size_t k) const { out[k] = wedge.rotate(in[index[k]], turns); }
+};
+
+/// Copies of particles as ghosts, in one pass where three would be: every field as it is but
+/// the position, made as its image (decomp::GhostImage: turned, then shifted), and the velocity,
+/// turned across a wedge face where velocity.turns is set (else among the fields as it is).
+/// Each value the same bits as its own pass would give.
+struct GatherImages {
+    GatherFields<int> fields;
+    decomp::GhostImage position;
+    TurnedCopy velocity;
+    EMERGENT_HD void operator()(std::size_t k) const {
+        fields(k);
+        position(k);
+        if (velocity.turns) velocity(k);
+    }
 };
 
 /// start[c] = the first slot of cell c in the keys sorted by cell (n_cells + 1 entries; the
