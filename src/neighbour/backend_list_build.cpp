@@ -228,25 +228,24 @@ void BackendListBuild::pack(const exec::Target& target, exec::ParticleMirror& mi
     // One pass: the fields copied as they are, and for ghosts the positions moved to their
     // image and the velocities turned.
     build::FieldGather plain;
-    build::GatherImages images{{plain, index}, {nullptr, index, nullptr, wedge, turns, shift},
-                               {nullptr, index, nullptr, wedge, 0}};
+    decomp::GhostImage position{nullptr, index, nullptr, wedge, turns, shift};
+    build::TurnedCopy velocity{nullptr, index, nullptr, wedge, 0};  // turns 0: among the plain fields
     mirror.for_each_array([&](FieldMask field, std::size_t bytes, void* data) {
         if (field == kForce) return;
         const unsigned words = static_cast<unsigned>(bytes / 4);
         std::uint32_t* to = out + offset;
         if (image && field == kPosition) {
-            images.position.in = static_cast<const Vec3*>(data);
-            images.position.out = reinterpret_cast<Vec3*>(to);
+            position.in = static_cast<const Vec3*>(data);
+            position.out = reinterpret_cast<Vec3*>(to);
         } else if (image && turns && field == kVelocity) {
-            images.velocity = {static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to), wedge, turns};
+            velocity = {static_cast<const Vec3*>(data), index, reinterpret_cast<Vec3*>(to), wedge, turns};
         } else {
             add_field(plain, static_cast<const std::uint32_t*>(data), to, words);
         }
         offset += count * words;
     });
-    images.fields.fields = plain;
     if (image)
-        exec::for_each(target, count, images);
+        exec::for_each(target, count, build::GatherImages{{plain, index}, position, velocity});
     else
         exec::for_each(target, count, build::GatherFields<int>{plain, index});
 }
